@@ -1,0 +1,26 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
+#include "mimpact/chain/chain_model.hpp"
+#include "mimpact/numerics/lzb_impulse_integrator.hpp"
+
+namespace mimpact::chain {
+
+// The outcome of the one multiple impact of a chain whose beads all touch.
+struct ChainImpact {
+  numerics::LzbResult lzb;
+  Eigen::VectorXd velocity_after;  // v+ = v- + M^-1 W P, per body (m/s)
+  double wall_time = 0.0;          // s spent in the impulse integration
+};
+
+ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
+                                  numerics::ImpactObserver* observer = nullptr);
+
+// The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
+// time and impulse, step count, duration, kinetic energy and momentum before and after.
+nlohmann::json chain_summary(const ChainModel& model, const ChainImpact& impact,
+                             double delta_p);
+
+}  // namespace mimpact::chain

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mimpact/chain/hertz.hpp"
+#include "mimpact/numerics/contact_law.hpp"
+
+namespace mimpact::chain {
+
+// A run of beads; bead k+1 has radius (1 - taper) times bead k's.
+struct SegmentSpec {
+  int count = 0;
+  double radius = 0.0;  // m, of the segment's first bead
+  double taper = 0.0;   // in [0, 1)
+  Material material;
+};
+
+// A bead thrown at the chain; for now from the left, touching the first bead.
+struct StrikerSpec {
+  double radius = 0.0;    // m
+  double velocity = 0.0;  // m/s towards the chain, > 0
+  Material material;
+};
+
+struct ContactSpec {
+  numerics::ComplianceModel model = numerics::ComplianceModel::bi_stiffness;
+  double exponent = 1.5;
+  double restitution = 1.0;
+  // K (N/m^eta) of every contact; when absent, Hertz's, which needs exponent 3/2
+  std::optional<double> stiffness;
+};
+
+// A chain scene file (docs of the format: examples/scenes/README.md). Bodies are numbered
+// left to right, the striker first; contact i joins bodies i and i + 1.
+struct ChainScene {
+  std::vector<SegmentSpec> segments;
+  std::vector<StrikerSpec> strikers;
+  ContactSpec contact;
+  std::optional<double> delta_p;  // N s, from "impact": {"delta_p"}
+};
+
+// Parses and validates a scene (JSON, comments allowed). Throws InvalidInput naming the
+// source, the field, its value and what is allowed; unknown keys are errors.
+ChainScene parse_chain_scene(std::string_view text, const std::string& source);
+ChainScene load_chain_scene(const std::filesystem::path& path);
+
+}  // namespace mimpact::chain

@@ -1,0 +1,69 @@
+#include "mimpact/chain/chain_model.hpp"
+
+#include <cmath>
+
+#include "mimpact/numerics/delassus.hpp"
+
+namespace mimpact::chain {
+
+namespace {
+
+struct Body {
+  double radius;
+  Material material;
+  double velocity;
+};
+
+std::vector<Body> bodies_of(const ChainScene& scene) {
+  std::vector<Body> bodies;
+  const StrikerSpec& striker = scene.strikers.front();
+  bodies.push_back({striker.radius, striker.material, striker.velocity});
+  for (const SegmentSpec& segment : scene.segments)
+    for (int k = 0; k < segment.count; ++k)
+      bodies.push_back({segment.radius * std::pow(1.0 - segment.taper, k), segment.material, 0.0});
+  return bodies;
+}
+
+}  // namespace
+
+ChainModel build_chain_model(const ChainScene& scene) {
+  const std::vector<Body> bodies = bodies_of(scene);
+  const Eigen::Index n = Eigen::Index(bodies.size());
+  ChainModel model;
+  model.radius.resize(n);
+  model.mass.resize(n);
+  model.velocity.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    model.radius(i) = bodies[i].radius;
+    model.mass(i) = bead_mass(bodies[i].radius, bodies[i].material);
+    model.velocity(i) = bodies[i].velocity;
+  }
+
+  std::vector<Eigen::Triplet<double>> gradients;
+  for (Eigen::Index i = 0; i + 1 < n; ++i) {
+    gradients.emplace_back(i, i, -1.0);
+    gradients.emplace_back(i + 1, i, 1.0);
+    numerics::ContactLaw law;
+    law.exponent = scene.contact.exponent;
+    law.restitution = scene.contact.restitution;
+    law.model = scene.contact.model;
+    law.stiffness = scene.contact.stiffness.value_or(hertz_stiffness(
+        bodies[i].radius, bodies[i].material, bodies[i + 1].radius, bodies[i + 1].material));
+    model.laws.push_back(law);
+  }
+  model.W.resize(n, n - 1);
+  model.W.setFromTriplets(gradients.begin(), gradients.end());
+  model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
+  model.u_minus = model.W.transpose() * model.velocity;
+  return model;
+}
+
+double momentum(const ChainModel& model, const Eigen::VectorXd& velocity) {
+  return model.mass.dot(velocity);
+}
+
+double kinetic_energy(const ChainModel& model, const Eigen::VectorXd& velocity) {
+  return 0.5 * model.mass.dot(velocity.cwiseAbs2());
+}
+
+}  // namespace mimpact::chain

@@ -1,0 +1,205 @@
+#include "mimpact/chain/chain_scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "mimpact/numerics/error.hpp"
+
+namespace mimpact::chain {
+
+namespace {
+
+using nlohmann::json;
+
+// Reads fields of one JSON object, every error naming the source and the field's path.
+class ObjectReader {
+ public:
+  ObjectReader(const json& object, std::string path, const std::string& source)
+      : object_(object), path_(std::move(path)), source_(source) {
+    if (!object_.is_object()) fail(path_ + " is " + std::string(object_.type_name()) +
+                                   "; allowed: an object {...}");
+  }
+
+  void allow_only(std::initializer_list<std::string_view> keys) const {
+    for (const auto& item : object_.items()) {
+      bool known = false;
+      for (std::string_view key : keys) known = known || item.key() == key;
+      if (!known) {
+        std::string allowed;
+        for (std::string_view key : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(key);
+        fail("unknown key \"" + item.key() + "\" in " + path_ + "; allowed: " + allowed);
+      }
+    }
+  }
+
+  bool has(const std::string& key) const { return object_.contains(key); }
+  std::string field(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  const json& at(const std::string& key) const {
+    if (!has(key)) fail("missing field " + field(key));
+    return object_.at(key);
+  }
+
+  // A number satisfying `allowed` (described by `allowed_text`).
+  double number(const std::string& key, const std::function<bool(double)>& allowed,
+                const std::string& allowed_text) const {
+    const json& value = at(key);
+    if (!value.is_number())
+      fail(field(key) + " is " + std::string(value.type_name()) + "; allowed: a number, " +
+           allowed_text);
+    const double x = value.get<double>();
+    if (!(std::isfinite(x) && allowed(x)))
+      fail(invalid_value_message(field(key), x, allowed_text));
+    return x;
+  }
+  double number_or(const std::string& key, double fallback,
+                   const std::function<bool(double)>& allowed,
+                   const std::string& allowed_text) const {
+    return has(key) ? number(key, allowed, allowed_text) : fallback;
+  }
+
+  std::string text(const std::string& key) const {
+    const json& value = at(key);
+    if (!value.is_string())
+      fail(field(key) + " is " + std::string(value.type_name()) + "; allowed: a string");
+    return value.get<std::string>();
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw InvalidInput(source_ + ": " + what); }
+
+ private:
+  const json& object_;
+  std::string path_;
+  const std::string& source_;
+};
+
+bool positive(double x) { return x > 0.0; }
+
+Material read_material(const ObjectReader& parent, const std::string& key,
+                       const std::string& source) {
+  ObjectReader reader(parent.at(key), parent.field(key), source);
+  reader.allow_only({"density", "young", "poisson"});
+  Material material;
+  material.density = reader.number("density", positive, "> 0 (kg/m^3)");
+  material.young = reader.number("young", positive, "> 0 (Pa)");
+  material.poisson = reader.number("poisson", [](double x) { return x > -1.0 && x < 0.5; },
+                                   "-1 < nu < 0.5");
+  return material;
+}
+
+// The body's own material, else the scene's default one.
+Material material_of(const ObjectReader& body, const std::optional<Material>& fallback,
+                     const std::string& source) {
+  if (body.has("material")) return read_material(body, "material", source);
+  if (!fallback)
+    body.fail("missing field " + body.field("material") +
+              " (and no top-level \"material\" to fall back on)");
+  return *fallback;
+}
+
+SegmentSpec read_segment(const json& value, const std::string& path,
+                         const std::optional<Material>& fallback, const std::string& source) {
+  ObjectReader reader(value, path, source);
+  reader.allow_only({"count", "radius", "taper", "material"});
+  SegmentSpec segment;
+  segment.count = int(reader.number("count", [](double x) { return x >= 1 && x == std::floor(x) && x <= 1e8; },
+                                    "an integer >= 1"));
+  segment.radius = reader.number("radius", positive, "> 0 (m)");
+  segment.taper = reader.number_or("taper", 0.0, [](double x) { return x >= 0.0 && x < 1.0; },
+                                   "0 <= taper < 1");
+  segment.material = material_of(reader, fallback, source);
+  return segment;
+}
+
+StrikerSpec read_striker(const json& value, const std::string& path,
+                         const std::optional<Material>& fallback, const std::string& source) {
+  ObjectReader reader(value, path, source);
+  reader.allow_only({"side", "radius", "velocity", "material"});
+  const std::string side = reader.has("side") ? reader.text("side") : "left";
+  if (side != "left")
+    reader.fail(reader.field("side") + " = \"" + side +
+                "\" is not supported yet; allowed: \"left\"");
+  StrikerSpec striker;
+  striker.radius = reader.number("radius", positive, "> 0 (m)");
+  striker.velocity = reader.number("velocity", positive, "> 0 (m/s, towards the chain)");
+  striker.material = material_of(reader, fallback, source);
+  return striker;
+}
+
+ContactSpec read_contact(const ObjectReader& scene, const std::string& source) {
+  ContactSpec contact;
+  if (!scene.has("contact")) return contact;
+  ObjectReader reader(scene.at("contact"), "contact", source);
+  reader.allow_only({"model", "exponent", "restitution", "stiffness"});
+  if (reader.has("model")) {
+    const std::string model = reader.text("model");
+    const auto parsed = numerics::compliance_model_from_string(model);
+    if (!parsed)
+      reader.fail("contact.model = \"" + model +
+                  "\" is invalid; allowed: \"bi-stiffness\", \"mono-stiffness\"");
+    contact.model = *parsed;
+  }
+  contact.exponent = reader.number_or("exponent", 1.5, positive, "> 0 (3/2 for Hertz)");
+  contact.restitution = reader.number_or("restitution", 1.0,
+                                         [](double x) { return x >= 0.0 && x <= 1.0; },
+                                         "0 <= e <= 1");
+  if (reader.has("stiffness"))
+    contact.stiffness = reader.number("stiffness", positive, "> 0 (N/m^exponent)");
+  else if (contact.exponent != 1.5)
+    reader.fail("missing field contact.stiffness: the Hertz stiffness holds for exponent 1.5 "
+                "only, and contact.exponent = " + std::to_string(contact.exponent));
+  return contact;
+}
+
+}  // namespace
+
+ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
+  json document;
+  try {
+    document = json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& error) {
+    throw InvalidInput(source + ": malformed JSON: " + error.what());
+  }
+  ObjectReader scene(document, "", source);
+  scene.allow_only({"material", "chain", "strikers", "contact", "impact"});
+  ChainScene result;
+  std::optional<Material> fallback;
+  if (scene.has("material")) fallback = read_material(scene, "material", source);
+
+  ObjectReader chain(scene.at("chain"), "chain", source);
+  chain.allow_only({"segments"});
+  const json& segments = chain.at("segments");
+  if (!segments.is_array() || segments.empty())
+    chain.fail("chain.segments must be a non-empty array of segments");
+  for (std::size_t k = 0; k < segments.size(); ++k)
+    result.segments.push_back(
+        read_segment(segments[k], "chain.segments[" + std::to_string(k) + "]", fallback, source));
+
+  const json& strikers = scene.at("strikers");
+  if (!strikers.is_array() || strikers.size() != 1)
+    scene.fail("strikers must be an array of exactly one striker (side \"left\") for now");
+  result.strikers.push_back(read_striker(strikers[0], "strikers[0]", fallback, source));
+
+  result.contact = read_contact(scene, source);
+  if (scene.has("impact")) {
+    ObjectReader impact(scene.at("impact"), "impact", source);
+    impact.allow_only({"delta_p"});
+    result.delta_p = impact.number("delta_p", positive, "> 0 (N s)");
+  }
+  return result;
+}
+
+ChainScene load_chain_scene(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InvalidInput(path.string() + ": cannot open the scene file for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_chain_scene(text.str(), path.string());
+}
+
+}  // namespace mimpact::chain

@@ -1,0 +1,58 @@
+#include <boost/program_options.hpp>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "mimpact/numerics/error.hpp"
+#include "mimpact/numerics/lcp_file.hpp"
+#include "mimpact/numerics/lemke.hpp"
+
+namespace mimpact::cli {
+
+namespace po = boost::program_options;
+
+int lcp_command(const std::vector<std::string>& arguments) {
+  std::string file;
+  numerics::LemkeOptions options;
+  po::options_description visible("mimpact lcp FILE: Lemke's method on an LCP file");
+  visible.add_options()("help,h", "this help")(
+      "max-pivots", po::value(&options.max_pivots)->default_value(0),
+      "pivot limit (0: 1000 + 100 n)");
+  po::options_description all;
+  all.add(visible).add_options()("file", po::value(&file)->required());
+  po::positional_options_description positional;
+  positional.add("file", 1);
+  po::variables_map values;
+  po::store(po::command_line_parser(arguments).options(all).positional(positional).run(), values);
+  if (values.count("help")) {
+    std::cout << visible << "\n";
+    return 0;
+  }
+  po::notify(values);
+
+  numerics::LcpProblem problem;
+  try {
+    problem = numerics::read_lcp_file(file);
+  } catch (const InvalidInput& error) {
+    // still one JSON object on stdout, so scripts see the outcome of every file
+    std::cout << nlohmann::json{{"file", file}, {"status", "invalid"}, {"message", error.what()}}
+                     .dump(2)
+              << "\n";
+    throw;
+  }
+  const numerics::LemkeResult result = numerics::solve_lemke(problem.M, problem.q, options);
+  nlohmann::json out = {
+      {"file", file},
+      {"status", numerics::to_string(result.status)},
+      {"n", problem.q.size()},
+      {"pivots", result.pivots},
+      {"complementarity_error", result.complementarity_error},
+      {"z", std::vector<double>(result.z.data(), result.z.data() + result.z.size())},
+      {"w", std::vector<double>(result.w.data(), result.w.data() + result.w.size())}};
+  if (!result.message.empty()) out["message"] = result.message;
+  std::cout << out.dump(2) << "\n";
+  // a ray or a pivot limit is an outcome, reported in "status"; only bad input fails
+  return result.status == numerics::LemkeStatus::invalid_input ? 1 : 0;
+}
+
+}  // namespace mimpact::cli

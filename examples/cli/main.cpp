@@ -1,0 +1,49 @@
+// mimpact: the command line of the library.
+//   mimpact chain SCENE.json [--out DIR] [--delta-p X] [--quiet]
+//   mimpact lcp FILE [--max-pivots N]
+#include <boost/program_options/errors.hpp>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "mimpact/numerics/error.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: mimpact COMMAND [ARGS]\n"
+    "commands:\n"
+    "  chain SCENE.json [--out DIR] [--delta-p X] [--quiet]\n"
+    "      the multiple impact of a granular chain; prints summary.json or writes it to DIR\n"
+    "  lcp FILE [--max-pivots N]\n"
+    "      solves the LCP of FILE (Siconos test format) with Lemke's method; prints JSON\n"
+    "run 'mimpact COMMAND --help' for the options of a command\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  const std::string command = argv[1];
+  const std::vector<std::string> arguments(argv + 2, argv + argc);
+  try {
+    if (command == "chain") return mimpact::cli::chain_command(arguments);
+    if (command == "lcp") return mimpact::cli::lcp_command(arguments);
+    if (command == "--help" || command == "-h" || command == "help") {
+      std::cout << kUsage;
+      return 0;
+    }
+    std::cerr << "mimpact: unknown command \"" << command << "\"; allowed: chain, lcp\n"
+              << kUsage;
+    return 2;
+  } catch (const boost::program_options::error& error) {
+    std::cerr << "mimpact " << command << ": " << error.what() << "\n";
+    return 2;
+  } catch (const mimpact::Error& error) {
+    std::cerr << "mimpact " << command << ": error: " << error.what() << "\n";
+    return 1;
+  }
+}

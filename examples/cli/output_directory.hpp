@@ -1,0 +1,17 @@
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace mimpact::cli {
+
+// Writes every file of `contents` (name -> text) into `directory` so that the directory is
+// either complete or absent: a new directory is filled under a temporary name beside it and
+// renamed into place; in an existing directory each file is written to a temporary name and
+// renamed over the old one. Throws mimpact::Error naming the path on failure, after removing
+// what it wrote.
+void write_output_directory(const std::filesystem::path& directory,
+                            const std::map<std::string, std::string>& contents);
+
+}  // namespace mimpact::cli

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace mimpact {
+
+// Base of every exception mimpact throws, so an application can catch the library's errors
+// in one place. The message names the offending field, its value and what is allowed.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Input that violates a documented precondition (a negative stiffness, sizes that disagree).
+class InvalidInput : public Error {
+ public:
+  using Error::Error;
+};
+
+// Formats "FIELD = VALUE is invalid; allowed: ALLOWED", the one shape of every input error.
+std::string invalid_value_message(const std::string& field, double value,
+                                  const std::string& allowed);
+
+}  // namespace mimpact

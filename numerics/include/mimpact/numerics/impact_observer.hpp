@@ -1,0 +1,42 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mimpact::numerics {
+
+// The state of an impact at one impulse step, for the contacts being sampled. The spans
+// point into the integrator's buffers: copy what you keep.
+struct ImpactSample {
+  std::int64_t step = 0;           // impulse steps taken so far
+  double time = 0.0;               // s since the impact began
+  double principal_impulse = 0.0;  // the independent variable, step * delta_p (N s)
+  std::span<const Eigen::Index> contacts;  // which contacts the arrays describe
+  std::span<const double> velocity;        // relative normal velocity u (m/s, < 0 approaching)
+  std::span<const double> energy;          // potential energy E (J)
+  std::span<const double> force;           // contact force F in the last step (N)
+  std::span<const double> impulse;         // cumulated impulse P (N s)
+};
+
+// Called at the first step, every `sample_every` steps and at the end of an impact.
+class ImpactObserver {
+ public:
+  virtual ~ImpactObserver() = default;
+  virtual void observe(const ImpactSample& sample) = 0;
+};
+
+// Keeps every sample: one row per sample, one column per sampled contact.
+class ImpactHistory : public ImpactObserver {
+ public:
+  void observe(const ImpactSample& sample) override;
+
+  std::vector<Eigen::Index> contacts;
+  std::vector<std::int64_t> step;
+  std::vector<double> time;
+  std::vector<double> principal_impulse;
+  std::vector<std::vector<double>> velocity, energy, force, impulse;
+};
+
+}  // namespace mimpact::numerics
