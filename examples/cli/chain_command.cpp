@@ -77,13 +77,10 @@ int chain_command(const std::vector<std::string>& arguments) {
   const chain::ChainModel model = chain::build_chain_model(scene);
   const chain::ChainImpact impact =
       chain::simulate_chain_impact(model, options, show_progress ? &progress : nullptr);
-  const nlohmann::json summary = chain::chain_summary(model, impact, *delta_p);
+  const nlohmann::ordered_json summary = chain::chain_summary(model, impact, *delta_p);
 
   if (!quiet)
-    std::fprintf(stderr, "%s: %lld bodies, %lld impulse steps, impact %.6g s, status %s, %.3g s\n",
-                 scene_file.c_str(), (long long)model.body_count(), (long long)impact.lzb.steps,
-                 impact.lzb.duration, std::string(numerics::to_string(impact.lzb.status)).c_str(),
-                 impact.wall_time);
+    std::cerr << scene_file << ": " << chain::chain_report(model, impact, *delta_p);
   if (impact.lzb.status != numerics::LzbStatus::terminated)
     throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
   if (out_dir.empty()) {

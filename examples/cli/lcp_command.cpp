@@ -35,13 +35,13 @@ int lcp_command(const std::vector<std::string>& arguments) {
     problem = numerics::read_lcp_file(file);
   } catch (const InvalidInput& error) {
     // still one JSON object on stdout, so scripts see the outcome of every file
-    std::cout << nlohmann::json{{"file", file}, {"status", "invalid"}, {"message", error.what()}}
+    std::cout << nlohmann::ordered_json{{"file", file}, {"status", "invalid"}, {"message", error.what()}}
                      .dump(2)
               << "\n";
     throw;
   }
   const numerics::LemkeResult result = numerics::solve_lemke(problem.M, problem.q, options);
-  nlohmann::json out = {
+  nlohmann::ordered_json out = {
       {"file", file},
       {"status", numerics::to_string(result.status)},
       {"n", problem.q.size()},

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "mimpact/chain/chain_model.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
@@ -20,7 +21,11 @@ ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOp
 
 // The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
 // time and impulse, step count, duration, kinetic energy and momentum before and after.
-nlohmann::json chain_summary(const ChainModel& model, const ChainImpact& impact,
-                             double delta_p);
+// Keys keep the order written here (ordered_json).
+nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact& impact,
+                                     double delta_p);
+
+// A few lines for people: sizes, steps, duration, energy and momentum, post-impact velocities.
+std::string chain_report(const ChainModel& model, const ChainImpact& impact, double delta_p);
 
 }  // namespace mimpact::chain

@@ -34,7 +34,7 @@ struct ContactSpec {
   std::optional<double> stiffness;
 };
 
-// A chain scene file (docs of the format: examples/scenes/README.md). Bodies are numbered
+// A chain scene file (the format: docs/scenes.md). Bodies are numbered
 // left to right, the striker first; contact i joins bodies i and i + 1.
 struct ChainScene {
   std::vector<SegmentSpec> segments;

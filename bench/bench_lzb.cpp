@@ -1,0 +1,73 @@
+// Cost of the LZB impulse-step integrator: the whole impact of chain C1 at the seed's
+// finest delta_p, and the cost of a step against the length of the chain.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "mimpact/chain/chain_impact.hpp"
+#include "mimpact/chain/chain_model.hpp"
+#include "mimpact/chain/chain_scene.hpp"
+
+namespace {
+
+using namespace mimpact;
+
+chain::ChainModel c1_like_chain(int beads) {
+  const std::string text =
+      R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+          "chain": {"segments": [{"count": )" + std::to_string(beads) + R"(, "radius": 0.010}]},
+          "strikers": [{"side": "left", "radius": 0.010, "velocity": 1.0}]})";
+  return chain::build_chain_model(chain::parse_chain_scene(text, "bench chain"));
+}
+
+// The whole impact of C1 at delta_p = 1e-6 (458 933 steps in the seed; 7.23 s there,
+// 1.23 s for Siconos 4.5 on this machine).
+void BM_C1WholeImpact(benchmark::State& state) {
+  const chain::ChainModel model =
+      chain::build_chain_model(chain::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
+  numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6});
+  numerics::LzbResult result;
+  for (auto _ : state) {
+    result = integrator.integrate(model.H, model.u_minus, model.laws);
+    benchmark::DoNotOptimize(result.impulse.data());
+  }
+  state.counters["steps"] = double(result.steps);
+  state.counters["contacts_per_step"] = double(result.contact_steps) / double(result.steps);
+}
+BENCHMARK(BM_C1WholeImpact)->Unit(benchmark::kMillisecond);
+
+// A fixed budget of impulse steps on chains of 20, 1 000 and 100 000 beads (the 20-bead
+// impact ends before the budget). The work of a step follows the contacts in the wave, so
+// the cost of a step must not grow with the chain.
+void BM_ChainSteps(benchmark::State& state) {
+  const chain::ChainModel model = c1_like_chain(int(state.range(0)));
+  numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6, .max_steps = 400'000});
+  numerics::LzbResult result;
+  for (auto _ : state) {
+    result = integrator.integrate(model.H, model.u_minus, model.laws);
+    benchmark::DoNotOptimize(result.impulse.data());
+  }
+  // per-iteration counts shown as a time per unit: seconds per step and per contact-step
+  const auto per = benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert;
+  state.counters["steps"] = double(result.steps);
+  state.counters["contacts_per_step"] = double(result.contact_steps) / double(result.steps);
+  state.counters["time_per_step"] = benchmark::Counter(double(result.steps), per);
+  state.counters["time_per_contact_step"] = benchmark::Counter(double(result.contact_steps), per);
+}
+BENCHMARK(BM_ChainSteps)->Arg(20)->Arg(1000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// What a call costs before its first step: checking H and resetting the per-contact
+// buffers, linear in the number of contacts.
+void BM_ImpactSetup(benchmark::State& state) {
+  const chain::ChainModel model = c1_like_chain(int(state.range(0)));
+  numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6, .max_steps = 1});
+  for (auto _ : state) {
+    numerics::LzbResult result = integrator.integrate(model.H, model.u_minus, model.laws);
+    benchmark::DoNotOptimize(result.impulse.data());
+  }
+}
+BENCHMARK(BM_ImpactSetup)->Arg(1000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

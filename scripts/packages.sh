@@ -1,0 +1,24 @@
+# Sourced by the scripts: installs the Debian packages a step needs when they are missing.
+# Only the Debian archive is needed; nothing is downloaded at build time.
+
+BUILD_PACKAGES=(cmake make g++ libeigen3-dev libboost-dev libboost-program-options-dev
+                nlohmann-json3-dev)
+TEST_PACKAGES=(libgtest-dev libbenchmark-dev)
+
+ensure_packages() {
+  local missing=()
+  for package in "$@"; do
+    dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
+      missing+=("$package")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "installing: ${missing[*]}" >&2
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "need root (or sudo) to install: ${missing[*]}" >&2; return 1; }
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" >/dev/null
+}

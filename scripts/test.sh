@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs what is missing (Debian bookworm), builds everything in Release and runs every
+# test; builds the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer and runs
+# them; installs the package and builds an application against it with find_package.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/packages.sh
+ensure_packages "${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}"
+
+jobs=2
+echo "== Release build, all tests"
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build/release -j"$jobs"
+ctest --test-dir build/release -j"$jobs" --output-on-failure
+
+echo "== ASan + UBSan build, unit tests"
+cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIMPACT_SANITIZE=ON \
+  -DMIMPACT_BUILD_BENCHMARKS=OFF >/dev/null
+unit_tests=(test_lemke test_lcp_file test_contact_law test_delassus test_lzb_impulse_integrator
+            test_lzb_allocation test_chain_scene)
+cmake --build build/sanitize -j"$jobs" --target "${unit_tests[@]}"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --test-dir build/sanitize -j"$jobs" -L unit --output-on-failure
+
+echo "== installed package: find_package(mimpact) from an application"
+rm -rf build/install build/linking
+cmake --install build/release --prefix build/install >/dev/null
+cmake -S examples/linking -B build/linking -DCMAKE_PREFIX_PATH="$PWD/build/install" >/dev/null
+cmake --build build/linking -j"$jobs"
+build/linking/two_balls
