@@ -5,6 +5,7 @@
 #include <iostream>
 #include <optional>
 
+#include "command_line.hpp"
 #include "commands.hpp"
 #include "mimpact/chain/chain_impact.hpp"
 #include "mimpact/numerics/error.hpp"
@@ -40,21 +41,12 @@ int chain_command(const std::vector<std::string>& arguments) {
   std::optional<double> delta_p_option;
   po::options_description visible(
       "mimpact chain SCENE.json: the multiple impact of a granular chain");
-  visible.add_options()("help,h", "this help")(
+  visible.add_options()(
       "out", po::value(&out_dir), "write summary.json into this directory instead of stdout")(
       "delta-p", po::value<double>(), "principal impulse step (N s); overrides impact.delta_p")(
       "quiet", "no progress or report on stderr");
-  po::options_description all;
-  all.add(visible).add_options()("scene", po::value(&scene_file)->required());
-  po::positional_options_description positional;
-  positional.add("scene", 1);
   po::variables_map values;
-  po::store(po::command_line_parser(arguments).options(all).positional(positional).run(), values);
-  if (values.count("help")) {
-    std::cout << visible << "\n";
-    return 0;
-  }
-  po::notify(values);
+  if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
 
   const chain::ChainScene scene = chain::load_chain_scene(scene_file);

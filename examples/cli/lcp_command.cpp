@@ -2,6 +2,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "command_line.hpp"
 #include "commands.hpp"
 #include "mimpact/numerics/error.hpp"
 #include "mimpact/numerics/lcp_file.hpp"
@@ -15,20 +16,10 @@ int lcp_command(const std::vector<std::string>& arguments) {
   std::string file;
   numerics::LemkeOptions options;
   po::options_description visible("mimpact lcp FILE: Lemke's method on an LCP file");
-  visible.add_options()("help,h", "this help")(
-      "max-pivots", po::value(&options.max_pivots)->default_value(0),
-      "pivot limit (0: 1000 + 100 n)");
-  po::options_description all;
-  all.add(visible).add_options()("file", po::value(&file)->required());
-  po::positional_options_description positional;
-  positional.add("file", 1);
+  visible.add_options()("max-pivots", po::value(&options.max_pivots)->default_value(0),
+                        "pivot limit (0: 1000 + 100 n)");
   po::variables_map values;
-  po::store(po::command_line_parser(arguments).options(all).positional(positional).run(), values);
-  if (values.count("help")) {
-    std::cout << visible << "\n";
-    return 0;
-  }
-  po::notify(values);
+  if (!parse_command_line(arguments, visible, "file", file, values)) return 0;
 
   numerics::LcpProblem problem;
   try {

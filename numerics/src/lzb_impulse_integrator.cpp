@@ -197,7 +197,11 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal,
   reset(restitution_, 0.0);
   reset(tolerance_u_, 0.0);
   reset(tolerance_energy_, 0.0);
-  mono_stiffness_ = std::make_unique<bool[]>(m);  // all false
+  if (flag_capacity_ < m) {  // bool arrays: no aliasing with the doubles in the hot loop
+    mono_stiffness_ = std::make_unique<bool[]>(m);
+    in_impact_ = std::make_unique<bool[]>(m);
+    flag_capacity_ = m;
+  }
   for (std::size_t j = 0; j < m; ++j) {
     const ContactLaw& law = laws[j];
     force_coefficient_[j] = law.force_coefficient();
@@ -220,7 +224,7 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal,
   reset(compression_work_, 0.0);
   reset(max_force_, 0.0);
   reset(time_of_max_, 0.0);
-  in_impact_ = std::make_unique<bool[]>(m);
+  std::fill_n(in_impact_.get(), m, false);
   active_.assign(m, 0);
   active_size_ = 0;
   for (std::size_t j = 0; j < m; ++j)

@@ -182,6 +182,71 @@ TEST(LzbChain, StepLimitIsReported) {
   EXPECT_NE(result.message.find("max_steps"), std::string::npos);
 }
 
+// --- the distributing law itself (seed 000, eqs. 11-13), read off the impulses of each step
+
+struct StepRecord {
+  std::vector<double> energy, velocity, impulse;
+};
+
+class EveryStep : public ImpactObserver {
+ public:
+  void observe(const ImpactSample& sample) override {
+    steps.push_back({{sample.energy.begin(), sample.energy.end()},
+                     {sample.velocity.begin(), sample.velocity.end()},
+                     {sample.impulse.begin(), sample.impulse.end()}});
+  }
+  std::vector<StepRecord> steps;  // steps[k]: the state after k steps
+};
+
+double increment(const EveryStep& record, std::size_t k, std::size_t j) {
+  return record.steps[k + 1].impulse[j] - record.steps[k].impulse[j];
+}
+
+// Without stored energy the contacts share a step as dP_j / dP_pi = (K_j / K_pi)(u_j / u_pi)^eta
+// (eq. 12), the primary taking delta_p.
+TEST(DistributingLaw, NoEnergyStoredFollowsEquation12) {
+  const double delta_p = 1e-6;
+  const Eigen::MatrixXd H = Eigen::Vector2d(30.0, 50.0).asDiagonal();  // two separate pairs
+  const Eigen::VectorXd u_minus = Eigen::Vector2d(-1.0, -0.5);
+  const std::vector<ContactLaw> laws = {{.stiffness = 1e9}, {.stiffness = 4e9}};
+  EveryStep record;
+  LzbImpulseIntegrator({.delta_p = delta_p, .sample_every = 1}).integrate(H, u_minus, laws, &record);
+  const double p0 = increment(record, 0, 0), p1 = increment(record, 0, 1);
+  EXPECT_NEAR(p1 / p0, (4e9 / 1e9) * std::pow(0.5 / 1.0, 1.5), 1e-12);
+  EXPECT_DOUBLE_EQ(std::max(p0, p1), delta_p);
+}
+
+// A contact entering compression beside a primary with energy E_pi takes
+// dP_j = delta_p^(1+eta) c^(1+eta) K_j |u_j|^eta / F_pi^(1+eta) (eq. 13); two contacts with
+// energy take dP_j = delta_p F_j / F_pi (eq. 11).
+TEST(DistributingLaw, EnteringAndLoadedContactsFollowEquations13And11) {
+  const double delta_p = 1e-6;
+  const Eigen::SparseMatrix<double> H = testing::uniform_chain_delassus(2, 1.0);
+  const Eigen::VectorXd u_minus = Eigen::Vector2d(-1.0, 0.0);
+  const std::vector<ContactLaw> laws = {{.stiffness = 1e9}, {.stiffness = 3e9}};
+  EveryStep record;
+  LzbImpulseIntegrator({.delta_p = delta_p, .sample_every = 1}).integrate(H, u_minus, laws, &record);
+
+  std::size_t entering = 0;  // the first step contact 1 takes part in
+  while (increment(record, entering, 1) == 0.0) ++entering;
+  const StepRecord& before = record.steps[entering];
+  ASSERT_EQ(before.energy[1], 0.0);
+  ASSERT_LT(before.velocity[1], 0.0);
+  const double c = std::pow(2.5, 0.6);
+  const double primary_force = laws[0].force_from_energy(before.energy[0]);
+  const double expected = std::pow(delta_p, 2.5) * std::pow(c, 2.5) * laws[1].stiffness *
+                          std::pow(-before.velocity[1], 1.5) / std::pow(primary_force, 2.5);
+  EXPECT_NEAR(increment(record, entering, 1), expected, 1e-12 * expected);
+  EXPECT_DOUBLE_EQ(increment(record, entering, 0), delta_p);
+
+  const std::size_t loaded = entering + 5;
+  const StepRecord& state = record.steps[loaded];
+  ASSERT_GT(state.energy[1], 0.0);
+  const double f0 = laws[0].force_from_energy(state.energy[0]);
+  const double f1 = laws[1].force_from_energy(state.energy[1]);
+  EXPECT_NEAR(increment(record, loaded, 1) / increment(record, loaded, 0), f1 / f0, 1e-10 * f1 / f0);
+}
+
 // --- bad input --------------------------------------------------------------------------
 
 std::string error_of(const std::function<void()>& run) {

@@ -97,7 +97,8 @@ class LzbImpulseIntegrator {
   // per contact: law constants
   std::vector<double> force_coefficient_, force_power_, one_plus_exponent_, inverse_e2_;
   std::vector<double> tolerance_u_, tolerance_energy_, restitution_;
-  std::unique_ptr<bool[]> mono_stiffness_;
+  std::unique_ptr<bool[]> mono_stiffness_;  // flag_capacity_ entries, reused
+  std::size_t flag_capacity_ = 0;
   // per contact: state
   std::vector<double> u_, u_old_, energy_, impulse_, step_impulse_, force_, force_hat_;
   std::vector<double> compression_work_, max_force_, time_of_max_;
