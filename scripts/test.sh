@@ -13,6 +13,12 @@ cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j"$jobs"
 ctest --test-dir build/release -j"$jobs" --output-on-failure
 
+echo "== benchmarks, one quick pass (they must run; their figures come from scripts/bench.sh)"
+for bench in bench_lzb bench_lemke; do
+  build/release/bench/$bench --benchmark_min_time=0.001 >build/release/bench/$bench.log 2>&1 ||
+    { cat build/release/bench/$bench.log; exit 1; }
+done
+
 echo "== ASan + UBSan build, unit tests"
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIMPACT_SANITIZE=ON \
   -DMIMPACT_BUILD_BENCHMARKS=OFF >/dev/null
