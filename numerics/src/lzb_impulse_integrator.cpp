@@ -226,11 +226,11 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal,
   reset(time_of_max_, 0.0);
   std::fill_n(in_impact_.get(), m, false);
   active_.assign(m, 0);
-  active_size_ = 0;
+  initially_active_ = 0;
   for (std::size_t j = 0; j < m; ++j)
     if (u_[j] < -tolerance_u_[j]) {
       in_impact_[j] = true;
-      active_[active_size_++] = Index(j);
+      active_[initially_active_++] = Index(j);
     }
 
   sampled_ = options_.sampled_contacts;
@@ -288,12 +288,11 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   double* time_of_max = time_of_max_.data();
   bool* in_impact = in_impact_.get();
   Index* active = active_.data();  // capacity m: a contact is listed at most once
-  std::size_t active_count = active_size_;
+  std::size_t active_count = initially_active_;
 
   std::int64_t step = 0;
   double time = 0.0;
   LzbResult result;
-  auto sync_active = [&] { active_size_ = active_count; };
   if (observer) notify(observer, step, time);
 
   while (true) {
@@ -307,8 +306,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       const bool approaching = u[j] < -tolerance_u[j];
       if (energy[j] > tolerance_energy[j] || (energy[j] > 0.0 && approaching)) {
         force_hat[j] = energy[j];
-      } else if (approaching) {
-        energy[j] = 0.0;
+      } else if (approaching) {  // here E_j = 0
         force_hat[j] = -u[j] * delta_p;
       } else {  // state 0
         energy[j] = 0.0;
@@ -412,12 +410,9 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
     time += primary_step_duration(delta_p, primary_energy_start, primary_energy_end,
                                   primary_force, coefficient[primary], power[primary]);
     ++step;
-    if (observer && options_.sample_every > 0 && step % options_.sample_every == 0) {
-      sync_active();
+    if (observer && options_.sample_every > 0 && step % options_.sample_every == 0)
       notify(observer, step, time);
-    }
   }
-  sync_active();
   if (observer) notify(observer, step, time);
 
   const Index m = Index(laws.size());

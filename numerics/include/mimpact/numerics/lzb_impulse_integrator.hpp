@@ -58,20 +58,26 @@ struct LzbResult {
 
 // The LZB (Liu-Zhao-Brogliato) multiple-impact law integrated in the principal impulse:
 // Darboux-Keller dynamics du = H dP with H = W^T M^-1 W frozen, per-contact compliance and
-// energetic restitution, the distributing law dP_j / dP_pi = F_j / F_pi, and the time
+// energetic restitution, the distributing law dP_j / dP_pi = F_j / F_pi and the time
 // recovered from dt = dP_pi / F_pi (LZB.md sections 2-6; Nguyen & Brogliato, INRIA RR-7636,
 // 2011, algorithms 1-3; Liu, Zhao & Brogliato, Proc. R. Soc. A 464, 2008).
 //
-// One departure from the seed, for stability: the primary contact is the one with the
-// largest force, where a contact entering compression counts with the force it would have
-// as primary. With equal laws this is the seed's choice (largest energy, or most negative
-// velocity when no energy is stored); unlike it, no contact ever takes a step larger than
-// delta_p, so a tiny primary energy late in a dissipative impact cannot make the step of a
-// re-entering contact explode.
+// Three departures from the seed, each keeping its convergence and removing a failure:
+// - The primary contact is the one with the largest force, a contact entering compression
+//   counting with the force it would have as primary. With equal laws this is the seed's
+//   choice (largest energy, or most negative velocity when none is stored); unlike it, no
+//   contact ever steps more than delta_p, so a tiny primary energy late in a dissipative
+//   impact cannot make a re-entering contact's step explode.
+// - A contact takes part while E_j > tol_E_j or u_j < -tol_u_j (LzbOptions), tolerances
+//   that vanish with delta_p; the impact ends when none does. A fixed threshold either
+//   distorts the forces (large) or never lets a dissipative impact end (tiny).
+// - dt is the integral of dP / F over the primary's step with E linear in P, exact for the
+//   power law where a contact starts or ends (F -> 0), where the seed's dt = delta_p / F
+//   converges only as delta_p^0.4.
 //
-// The work of a step is proportional to the contacts taking part in the impact (those with
-// E_j > 0 or u_j < 0), not to all contacts, when H is sparse. The step loop allocates
-// nothing; buffers are reused from one call to the next.
+// With sparse H the work of a step is proportional to the contacts taking part (about the
+// width of the wave in a chain), not to all contacts. The step loop allocates nothing;
+// buffers are reused from one call to the next.
 class LzbImpulseIntegrator {
  public:
   explicit LzbImpulseIntegrator(LzbOptions options = {});
@@ -103,8 +109,8 @@ class LzbImpulseIntegrator {
   std::vector<double> u_, u_old_, energy_, impulse_, step_impulse_, force_, force_hat_;
   std::vector<double> compression_work_, max_force_, time_of_max_;
   std::unique_ptr<bool[]> in_impact_;
-  std::vector<Eigen::Index> active_;  // contacts with E_j > 0 or u_j < 0, the first
-  std::size_t active_size_ = 0;       // active_size_ entries
+  std::vector<Eigen::Index> active_;   // contacts taking part, the first ones listed
+  std::size_t initially_active_ = 0;   // how many take part at the start
   // observer buffers
   std::vector<Eigen::Index> sampled_;
   std::vector<double> sample_u_, sample_energy_, sample_force_, sample_impulse_;
