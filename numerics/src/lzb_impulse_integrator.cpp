@@ -89,6 +89,33 @@ double primary_step_duration(double delta_p, double e0, double e1, double primar
   return length / primary_force * factor;
 }
 
+// Below this share of a step, the end of the primary's compression is not worth a step of
+// its own: the error of treating the step as expansion is of order share^2.
+constexpr double kSmallestCut = 1e-6;
+
+// The share s in [0, 1] of the step at which the primary contact's phase ends, so that the
+// step can stop exactly there: u_pi crossing 0 (compression ends), or E_pi reaching the
+// level where it is released (0, or (1 - e^2) W_c for mono-stiffness). Within a step u_pi
+// is linear in s, u0 + du s, and the work trapezoidal, so E(s) = E0 - f dp (u0 s + du s^2/2)
+// in expansion, with f = 1/e^2 for bi-stiffness and 1 for mono-stiffness.
+double primary_phase_end(double u0, double du, double e0, double dp, double f, double level,
+                         bool released_at_once) {
+  if (u0 < 0.0 && u0 + du > 0.0) {
+    const double crossing = -u0 / du;
+    if (crossing >= kSmallestCut) return crossing;
+  } else if (u0 + 0.5 * du < 0.0) {
+    return 1.0;  // compression all along
+  }
+  // nothing to give back (e = 0, or E already at its level): release where the step's work
+  // is zero, at once when u0 >= 0
+  if (released_at_once || level >= e0) return std::clamp(-2.0 * u0 / du, 0.0, 1.0);
+  const double a = 0.5 * f * dp * du, b = f * dp * u0, c = level - e0;
+  if (a + b + c <= 0.0) return 1.0;  // E stays above its release level
+  const double discriminant = b * b - 4.0 * a * c;
+  const double denominator = -b - std::sqrt(std::max(discriminant, 0.0));
+  return denominator < 0.0 ? std::clamp(2.0 * c / denominator, 0.0, 1.0) : 1.0;
+}
+
 std::string entry(Index i, Index j) {
   return "H(" + std::to_string(i) + ", " + std::to_string(j) + ")";
 }
@@ -312,6 +339,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
         energy[j] = 0.0;
         in_impact[j] = false;
         force[j] = 0.0;
+        step_impulse[j] = 0.0;
         active[a] = active[--active_count];
         continue;
       }
@@ -364,7 +392,25 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       u_old[j] = u[j];
     }
 
-    // 3. velocities u += H dP; a contact pushed into compression joins the impact.
+    // 3. the step ends where the primary's phase ends, if that is inside it: a lone contact
+    //    then comes out exact, and the primary never loses energy to the clamp at E = 0.
+    {
+      double du = 0.0;  // H is symmetric: column pi is row pi
+      H.for_each_in_column(primary, [&](Index i, double h_ij) { du += h_ij * step_impulse[i]; });
+      const double e = restitution[primary];
+      const bool in_expansion_mono = mono[primary];
+      const double release_level =
+          in_expansion_mono
+              ? (1.0 - e * e) * (u[primary] < 0.0 ? energy[primary] : compression_work[primary])
+              : 0.0;
+      const double share = primary_phase_end(
+          u[primary], du, energy[primary], delta_p, in_expansion_mono ? 1.0 : inverse_e2[primary],
+          release_level, !in_expansion_mono && e == 0.0);
+      if (share < 1.0)
+        for (std::size_t a = 0; a < active_count; ++a) step_impulse[active[a]] *= share;
+    }
+
+    // 4. velocities u += H dP; a contact pushed into compression joins the impact.
     const std::size_t stepping = active_count;
     result.contact_steps += std::int64_t(stepping);
     for (std::size_t a = 0; a < stepping; ++a) {
@@ -379,7 +425,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       });
     }
 
-    // 4. energies, with the trapezoidal work of the step.
+    // 5. energies, with the trapezoidal work of the step.
     const double primary_energy_start = energy[primary];
     double primary_energy_end = 0.0;  // before any clamp or reset, for the step's duration
     for (std::size_t a = 0; a < stepping; ++a) {
@@ -397,8 +443,8 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
         e_j -= mean_u * dp;
         if (j == primary) primary_energy_end = e_j;
         const double e = restitution[j];
-        if (u[j] > 0.0 && e_j <= (1.0 - e * e) * compression_work[j]) e_j = 0.0;
-      } else if (mean_u <= 0.0) {
+        if (u[j] >= 0.0 && e_j <= (1.0 - e * e) * compression_work[j]) e_j = 0.0;
+      } else if (mean_u < 0.0) {
         e_j -= mean_u * dp;
       } else {  // e = 0 drops the energy at once, as if it fell to -infinity
         e_j = restitution[j] > 0.0 ? e_j - mean_u * dp * inverse_e2[j] : -INFINITY;
@@ -407,7 +453,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       energy[j] = std::max(e_j, 0.0);
     }
 
-    time += primary_step_duration(delta_p, primary_energy_start, primary_energy_end,
+    time += primary_step_duration(step_impulse[primary], primary_energy_start, primary_energy_end,
                                   primary_force, coefficient[primary], power[primary]);
     ++step;
     if (observer && options_.sample_every > 0 && step % options_.sample_every == 0)

@@ -48,21 +48,24 @@ TEST(Conservation, MomentumToRoundOffInEveryConvergenceChain) {
   }
 }
 
-// For e = 1 every step conserves kinetic plus potential energy exactly but for the clamp
-// of E at 0 when a contact opens inside a step: an O(delta_p) error.
-TEST(Conservation, ElasticChainKeepsItsEnergyToFirstOrder) {
+// For e = 1 every step conserves kinetic plus potential energy exactly, but for the clamp
+// of E at 0 when a contact other than the primary opens inside a step: the error is of
+// second order in delta_p (Siconos: +0.4 %, +0.015 %, +0.0027 % at 1e-4, 1e-5, 1e-6).
+TEST(Conservation, ElasticChainKeepsItsEnergyToSecondOrder) {
   const chain::ChainModel model = scene_model("c1.json");
   const double natural_impulse = model.mass(0) * model.velocity(0);
   std::vector<double> errors;
   for (double delta_p : {1e-4, 1e-5, 1e-6}) {
     const chain::ChainImpact impact = run_chain(model, delta_p);
     const double error = std::abs(kinetic_energy_ratio(model, impact) - 1.0);
-    EXPECT_LE(error, 2.0 * delta_p / natural_impulse) << "delta_p = " << delta_p;
+    const double h = delta_p / natural_impulse;
+    EXPECT_LE(error, 100.0 * h * h) << "delta_p = " << delta_p;
     errors.push_back(error);
     std::printf("C1 delta_p = %g: kinetic energy changes by %+.3g %%\n", delta_p,
                 100.0 * (kinetic_energy_ratio(model, impact) - 1.0));
   }
-  EXPECT_LT(errors.back(), errors.front() / 20.0);
+  EXPECT_GT(errors[0] / errors[1], 50.0);
+  EXPECT_GT(errors[1] / errors[2], 50.0);
 }
 
 // C3 (e = 0.6) ends cleanly where Siconos with its default tolerances blows up. Under the

@@ -42,25 +42,22 @@ struct TwoBodyCase {
 
 class TwoBodies : public ::testing::TestWithParam<TwoBodyCase> {};
 
-// u+ = -e u- for one contact, at first order in delta_p, for every e.
-TEST_P(TwoBodies, RestitutionAtFirstOrderInDeltaP) {
+// u+ = -e u- for one contact, for every e. Within a step u is linear and the trapezoidal
+// work exact, and the steps end exactly where compression ends and where the energy is
+// released: a lone contact comes out exact to round-off, however coarse delta_p.
+TEST_P(TwoBodies, OneContactRestitutionIsExactAtAnyDeltaP) {
   const auto [exponent, model] = GetParam();
   const double natural_impulse = kReducedMass * kSpeed;
   for (double e : {0.0, 0.3, 0.8, 1.0}) {
-    std::vector<double> errors;
-    for (int divisions : {100, 1000, 10000}) {
+    for (int divisions : {3, 100, 10000}) {
       const LzbResult result =
           two_body_impact(law_for(exponent, e, model), natural_impulse / divisions);
       ASSERT_EQ(result.status, LzbStatus::terminated);
-      const double error = std::abs(result.velocity(0) - e * kSpeed) / kSpeed;
-      EXPECT_LE(error, 4.0 / divisions) << "e = " << e << ", N = " << divisions;
-      errors.push_back(error);
+      EXPECT_NEAR(result.velocity(0), e * kSpeed, 1e-11 * kSpeed)
+          << "e = " << e << ", N = " << divisions;
       // the impulse is the change of relative velocity over H
       EXPECT_NEAR(result.impulse(0), (result.velocity(0) + kSpeed) * kReducedMass,
                   1e-12 * natural_impulse);
-    }
-    if (errors.front() > 1e-10) {
-      EXPECT_LT(errors.back(), errors.front() / 30) << "e = " << e;
     }
   }
 }

@@ -62,7 +62,7 @@ struct LzbResult {
 // recovered from dt = dP_pi / F_pi (LZB.md sections 2-6; Nguyen & Brogliato, INRIA RR-7636,
 // 2011, algorithms 1-3; Liu, Zhao & Brogliato, Proc. R. Soc. A 464, 2008).
 //
-// Three departures from the seed, each keeping its convergence and removing a failure:
+// Four departures from the seed, each keeping its convergence and removing a failure:
 // - The primary contact is the one with the largest force, a contact entering compression
 //   counting with the force it would have as primary. With equal laws this is the seed's
 //   choice (largest energy, or most negative velocity when none is stored); unlike it, no
@@ -71,6 +71,9 @@ struct LzbResult {
 // - A contact takes part while E_j > tol_E_j or u_j < -tol_u_j (LzbOptions), tolerances
 //   that vanish with delta_p; the impact ends when none does. A fixed threshold either
 //   distorts the forces (large) or never lets a dissipative impact end (tiny).
+// - A step ends where the primary's phase ends inside it (u_pi crossing 0, E_pi reaching its
+//   release level): a lone contact comes out exact at any delta_p, and an elastic chain
+//   keeps its energy to second order.
 // - dt is the integral of dP / F over the primary's step with E linear in P, exact for the
 //   power law where a contact starts or ends (F -> 0), where the seed's dt = delta_p / F
 //   converges only as delta_p^0.4.
