@@ -2,7 +2,7 @@
 # Only the Debian archive is needed; nothing is downloaded at build time.
 
 BUILD_PACKAGES=(cmake make g++ libeigen3-dev libboost-dev libboost-program-options-dev
-                nlohmann-json3-dev)
+                libsuitesparse-dev nlohmann-json3-dev)
 TEST_PACKAGES=(libgtest-dev libbenchmark-dev)
 
 ensure_packages() {

@@ -1,5 +1,6 @@
 #include "mimpact/numerics/delassus.hpp"
 
+#include <Eigen/CholmodSupport>
 #include <cmath>
 #include <string>
 
@@ -7,19 +8,41 @@
 
 namespace mimpact::numerics {
 
-Eigen::SparseMatrix<double> assemble_delassus(const Eigen::SparseMatrix<double>& W,
-                                              const Eigen::VectorXd& inverse_mass) {
-  if (inverse_mass.size() != W.rows())
-    throw InvalidInput("inverse_mass has " + std::to_string(inverse_mass.size()) +
-                       " entries but W has " + std::to_string(W.rows()) +
-                       " rows; allowed: one entry per degree of freedom");
+namespace {
+
+void check_sizes(const Eigen::SparseMatrix<double>& W, Eigen::Index mass_size) {
+  if (mass_size != W.rows())
+    throw InvalidInput("the mass has " + std::to_string(mass_size) + " degrees of freedom but W has " +
+                       std::to_string(W.rows()) + " rows; allowed: one row per degree of freedom");
+}
+
+}  // namespace
+
+Delassus::Delassus(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& inverse_mass) {
+  check_sizes(W, inverse_mass.size());
   for (Eigen::Index i = 0; i < inverse_mass.size(); ++i)
     if (!(inverse_mass(i) >= 0.0 && std::isfinite(inverse_mass(i))))
       throw InvalidInput(invalid_value_message("inverse_mass(" + std::to_string(i) + ")",
                                                inverse_mass(i), "a finite value >= 0 (1/kg)"));
-  Eigen::SparseMatrix<double> H = W.transpose() * inverse_mass.asDiagonal() * W;
-  H.makeCompressed();
-  return H;
+  mobility_ = inverse_mass.asDiagonal() * W;
+  H_ = W.transpose() * mobility_;
+  H_.makeCompressed();
+}
+
+Delassus::Delassus(const Eigen::SparseMatrix<double>& W, const Eigen::SparseMatrix<double>& mass) {
+  check_sizes(W, mass.rows());
+  Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>> cholesky(mass);
+  if (cholesky.info() != Eigen::Success)
+    throw InvalidInput("the mass matrix is not symmetric positive definite (CHOLMOD could not "
+                       "factorize it); allowed: positive masses");
+  mobility_ = cholesky.solve(W);
+  H_ = W.transpose() * mobility_;
+  H_.makeCompressed();
+}
+
+Eigen::SparseMatrix<double> assemble_delassus(const Eigen::SparseMatrix<double>& W,
+                                              const Eigen::VectorXd& inverse_mass) {
+  return Delassus(W, inverse_mass).H();
 }
 
 }  // namespace mimpact::numerics

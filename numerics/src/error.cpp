@@ -4,12 +4,15 @@
 
 namespace mimpact {
 
+std::string to_text(double value) {
+  char number[32];
+  const auto end = std::to_chars(number, number + sizeof number, value).ptr;
+  return std::string(number, end);
+}
+
 std::string invalid_value_message(const std::string& field, double value,
                                   const std::string& allowed) {
-  char number[32];
-  // the shortest text that reads back as the same double: -1e-05, not -1.0000000000000001e-05
-  const auto end = std::to_chars(number, number + sizeof number, value).ptr;
-  return field + " = " + std::string(number, end) + " is invalid; allowed: " + allowed;
+  return field + " = " + to_text(value) + " is invalid; allowed: " + allowed;
 }
 
 }  // namespace mimpact

@@ -175,6 +175,14 @@ LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options) : options_(std::m
   if (!options_.is_valid(&why)) throw InvalidInput("LZB options: " + why);
 }
 
+void LzbImpulseIntegrator::set_delta_p(double delta_p) {
+  LzbOptions changed = options_;
+  changed.delta_p = delta_p;
+  std::string why;
+  if (!changed.is_valid(&why)) throw InvalidInput("LZB options: " + why);
+  options_ = changed;
+}
+
 LzbResult LzbImpulseIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
                                           const Eigen::VectorXd& u_minus,
                                           std::span<const ContactLaw> laws,

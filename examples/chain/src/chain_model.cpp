@@ -2,7 +2,10 @@
 
 #include <cmath>
 
+#include "mimpact/kernel/lagrangian_linear_tids.hpp"
+#include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/numerics/delassus.hpp"
+#include "mimpact/plugins/lzb_law.hpp"
 
 namespace mimpact::chain {
 
@@ -32,12 +35,17 @@ ChainModel build_chain_model(const ChainScene& scene) {
   ChainModel model;
   model.radius.resize(n);
   model.mass.resize(n);
+  model.position.resize(n);
   model.velocity.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     model.radius(i) = bodies[i].radius;
     model.mass(i) = bead_mass(bodies[i].radius, bodies[i].material);
     model.velocity(i) = bodies[i].velocity;
   }
+  model.position(1) = 0.0;
+  model.position(0) = -(model.radius(0) + model.radius(1)) - scene.strikers.front().gap;
+  for (Eigen::Index i = 2; i < n; ++i)
+    model.position(i) = model.position(i - 1) + model.radius(i - 1) + model.radius(i);
 
   std::vector<Eigen::Triplet<double>> gradients;
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
@@ -56,6 +64,29 @@ ChainModel build_chain_model(const ChainScene& scene) {
   model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
   model.u_minus = model.W.transpose() * model.velocity;
   return model;
+}
+
+std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const ChainModel& model) {
+  auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
+  std::vector<std::shared_ptr<kernel::DynamicalSystem>> bodies;
+  for (Eigen::Index i = 0; i < model.body_count(); ++i) {
+    kernel::LagrangianLinearTIDS::Matrices matrices;
+    matrices.mass = Eigen::MatrixXd::Constant(1, 1, model.mass(i));
+    bodies.push_back(std::make_shared<kernel::LagrangianLinearTIDS>(
+        Eigen::VectorXd::Constant(1, model.position(i)),
+        Eigen::VectorXd::Constant(1, model.velocity(i)), matrices,
+        i == 0 ? "striker" : "bead " + std::to_string(i)));
+    system->add(bodies.back());
+  }
+  for (Eigen::Index i = 0; i < model.contact_count(); ++i) {
+    // g = x_{i+1} - x_i - (R_i + R_{i+1}) on the stacked (x_i, x_{i+1})
+    auto relation = std::make_shared<kernel::LinearRelation>(
+        Eigen::RowVector2d(-1.0, 1.0), -(model.radius(i) + model.radius(i + 1)));
+    system->add(std::make_shared<kernel::Interaction>(
+        bodies[i], bodies[i + 1], relation, std::make_shared<plugins::LzbLaw>(model.laws[i]),
+        "contact " + std::to_string(i)));
+  }
+  return system;
 }
 
 double momentum(const ChainModel& model, const Eigen::VectorXd& velocity) {

@@ -119,7 +119,7 @@ SegmentSpec read_segment(const json& value, const std::string& path,
 StrikerSpec read_striker(const json& value, const std::string& path,
                          const std::optional<Material>& fallback, const std::string& source) {
   ObjectReader reader(value, path, source);
-  reader.allow_only({"side", "radius", "velocity", "material"});
+  reader.allow_only({"side", "radius", "velocity", "gap", "material"});
   const std::string side = reader.has("side") ? reader.text("side") : "left";
   if (side != "left")
     reader.fail(reader.field("side") + " = \"" + side +
@@ -127,6 +127,7 @@ StrikerSpec read_striker(const json& value, const std::string& path,
   StrikerSpec striker;
   striker.radius = reader.number("radius", positive, "> 0 (m)");
   striker.velocity = reader.number("velocity", positive, "> 0 (m/s, towards the chain)");
+  striker.gap = reader.number_or("gap", 0.0, [](double x) { return x >= 0.0; }, ">= 0 (m)");
   striker.material = material_of(reader, fallback, source);
   return striker;
 }

@@ -18,6 +18,10 @@ class InvalidInput : public Error {
   using Error::Error;
 };
 
+// The shortest text that reads back as the same double: 1e-09, not 0.000000 or
+// 1.0000000000000001e-09.
+std::string to_text(double value);
+
 // Formats "FIELD = VALUE is invalid; allowed: ALLOWED", the one shape of every input error.
 std::string invalid_value_message(const std::string& field, double value,
                                   const std::string& allowed);

@@ -93,6 +93,8 @@ class LzbImpulseIntegrator {
                       std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
 
   const LzbOptions& options() const { return options_; }
+  // Changes delta_p for the next impacts; throws InvalidInput unless it is finite and > 0.
+  void set_delta_p(double delta_p);
 
  private:
   template <class Delassus>

@@ -9,15 +9,25 @@
 
 namespace mimpact::chain {
 
-// The outcome of the one multiple impact of a chain whose beads all touch.
+// The outcome of the multiple impact of a chain: the striker flies to the first bead (if
+// there is a gap), then the shock crosses the touching beads in one impact.
 struct ChainImpact {
   numerics::LzbResult lzb;
   Eigen::VectorXd velocity_after;  // v+ = v- + M^-1 W P, per body (m/s)
-  double wall_time = 0.0;          // s spent in the impulse integration
+  double impact_time = 0.0;        // s, when the striker touched the first bead
+  double wall_time = 0.0;          // s spent in the impact computation
 };
 
+// Through the kernel: the chain's system, the event-driven integrator, the LZB impact
+// problem; the run ends with the first impact.
 ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
                                   numerics::ImpactObserver* observer = nullptr);
+
+// The same impact on numerics alone (H of the model, no kernel), for comparisons: zero
+// gaps only.
+ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
+                                           const numerics::LzbOptions& options,
+                                           numerics::ImpactObserver* observer = nullptr);
 
 // The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
 // time and impulse, step count, duration, kinetic energy and momentum before and after.

@@ -2,19 +2,23 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "mimpact/chain/chain_scene.hpp"
+#include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 
 namespace mimpact::chain {
 
-// A chain of beads on a line at the instant of impact: every gap zero, so every contact
-// belongs to one multiple impact (LZB.md section 8). Bodies left to right, striker first;
-// contact i joins bodies i and i + 1, g_i = x_{i+1} - x_i - (R_i + R_{i+1}).
+// A chain of beads on a line (LZB.md section 8): the beads touch, the striker may fly
+// towards them first. Bodies left to right, striker first; contact i joins bodies i and
+// i + 1, g_i = x_{i+1} - x_i - (R_i + R_{i+1}). Once the striker touches, every contact
+// belongs to one multiple impact.
 struct ChainModel {
   Eigen::VectorXd radius;         // m, per body
   Eigen::VectorXd mass;           // kg, per body
+  Eigen::VectorXd position;       // m, of the centres at t = 0 (first bead at 0)
   Eigen::VectorXd velocity;       // pre-impact velocity (m/s, > 0 to the right), per body
   Eigen::SparseMatrix<double> W;  // bodies x contacts, column i = grad g_i
   Eigen::SparseMatrix<double> H;  // W^T M^-1 W, tridiagonal
@@ -26,6 +30,10 @@ struct ChainModel {
 };
 
 ChainModel build_chain_model(const ChainScene& scene);
+
+// The chain in the kernel's terms: one LagrangianLinearTIDS per body (no force), one
+// interaction per contact with a LinearRelation and an LzbLaw.
+std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const ChainModel& model);
 
 // Total momentum (N s) and kinetic energy (J) of the chain moving with `velocity`.
 double momentum(const ChainModel& model, const Eigen::VectorXd& velocity);

@@ -19,10 +19,11 @@ struct SegmentSpec {
   Material material;
 };
 
-// A bead thrown at the chain; for now from the left, touching the first bead.
+// A bead thrown at the chain from the left.
 struct StrikerSpec {
   double radius = 0.0;    // m
   double velocity = 0.0;  // m/s towards the chain, > 0
+  double gap = 0.0;       // m between the striker and the first bead, >= 0
   Material material;
 };
 

@@ -1,0 +1,58 @@
+// A steel ball dropped from 1 m on a steel floor, e = 0.8: the bounce times and apex
+// heights against the geometric series of a rigid bounce, then the ball at rest with the
+// floor carrying its weight.
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "mimpact/models/bouncing_ball.hpp"
+#include "mimpact/models/simulation_setup.hpp"
+
+using namespace mimpact;
+
+namespace {
+
+class Bounces : public kernel::SimulationObserver {
+ public:
+  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
+    times.push_back(report.time);
+    heights.push_back(simulation.system().system(0).position()(0));
+    speeds.push_back(report.velocity_after(0));
+  }
+  void on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
+    if (step.contact_forces && step.contact_forces->force.size() && rest_force < 0) {
+      rest_force = step.contact_forces->force(0);
+      rest_time = step.contact_forces->time;
+    }
+  }
+  std::vector<double> times, heights, speeds;
+  double rest_force = -1.0, rest_time = 0.0;
+};
+
+}  // namespace
+
+int main() {
+  const models::BouncingBall ball;
+  models::SimulationSetup setup;
+  setup.impacts.relative_delta_p = ball.relative_delta_p;
+  kernel::Simulation simulation = models::make_simulation(ball.build(), setup);
+  Bounces bounces;
+  simulation.add_observer(bounces);
+  const kernel::RunSummary summary = simulation.run(0.0, 5.0);
+
+  const double g = ball.gravity, e = ball.restitution;
+  const double first_speed = std::sqrt(2.0 * g * (ball.drop_height - ball.radius));
+  double expected_time = std::sqrt(2.0 * (ball.drop_height - ball.radius) / g);
+  std::printf("bounce  time (s)          rigid series (s)   apex (m)          rigid series (m)\n");
+  for (std::size_t k = 0; k < bounces.times.size() && k < 12; ++k) {
+    const double outgoing = std::pow(e, double(k + 1)) * first_speed;
+    const double apex = bounces.heights[k] + bounces.speeds[k] * bounces.speeds[k] / (2.0 * g);
+    std::printf("%4zu  %.12f  %.12f  %.12f  %.12f\n", k + 1, bounces.times[k], expected_time,
+                apex, ball.radius + outgoing * outgoing / (2.0 * g));
+    expected_time += 2.0 * outgoing / g;
+  }
+  std::printf("%zu impacts; at rest from t = %.6f s with floor force %.6f N (m g = %.6f N)\n",
+              bounces.times.size(), bounces.rest_time, bounces.rest_force, ball.mass() * g);
+  std::printf("%lld events, %lld smooth steps, %.3f s of computation\n", (long long)summary.events,
+              (long long)summary.smooth_steps, summary.wall_time);
+}

@@ -1,0 +1,31 @@
+#include "mimpact/kernel/scleronomous_relation.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "mimpact/numerics/error.hpp"
+
+namespace mimpact::kernel {
+
+ScleronomousRelation::ScleronomousRelation(Gap gap, Jacobian jacobian, Rate rate)
+    : gap_(std::move(gap)), jacobian_(std::move(jacobian)), rate_(std::move(rate)) {
+  if (!gap_ || !jacobian_)
+    throw InvalidInput("a scleronomous relation needs both a gap and a Jacobian function");
+}
+
+double ScleronomousRelation::jacobian_rate(const VectorXd& q, const VectorXd& v) const {
+  if (rate_) return rate_(q, v);
+  const double speed = v.norm();
+  if (speed == 0.0) return 0.0;
+  const double step = std::sqrt(std::numeric_limits<double>::epsilon()) *
+                      std::max(1.0, q.cwiseAbs().maxCoeff()) / speed;
+  ahead_.resize(q.size());
+  behind_.resize(q.size());
+  shifted_ = q + step * v;
+  jacobian_(shifted_, ahead_);
+  shifted_ = q - step * v;
+  jacobian_(shifted_, behind_);
+  return (ahead_ - behind_).dot(v) / (2.0 * step);
+}
+
+}  // namespace mimpact::kernel

@@ -1,0 +1,127 @@
+#include "mimpact/plugins/contact_dynamics.hpp"
+
+#include <algorithm>
+
+#include "mimpact/numerics/error.hpp"
+
+namespace mimpact::plugins {
+
+void ContactDynamics::initialize(const kernel::NonSmoothDynamicalSystem& system) {
+  system_ = &system;
+  blocks_.clear();
+  blocks_.resize(std::size_t(system.system_count()));
+  for (Index k = 0; k < system.system_count(); ++k) {
+    MassBlock& block = blocks_[k];
+    block.offset = system.offset(k);
+    block.size = system.system(k).dimension();
+    block.diagonal = system.system(k).mass_is_diagonal();
+    block.constant = system.system(k).mass_is_constant();
+    block.mass.setZero(block.size, block.size);
+    block.q.setZero(block.size);
+    block.v.setZero(block.size);
+    block.force.setZero(block.size);
+  }
+  geometry_constant_ = true;
+  for (Index j = 0; j < system.interaction_count(); ++j)
+    geometry_constant_ = geometry_constant_ && system.interaction(j).relation().is_linear();
+  free_acceleration_.setZero(system.dof());
+  set_.clear();
+  set_valid_ = factor_valid_ = false;
+}
+
+void ContactDynamics::factorize_masses(const VectorXd& q) {
+  for (Index k = 0; k < Index(blocks_.size()); ++k) {
+    MassBlock& block = blocks_[k];
+    if (block.constant && block.factorized) continue;
+    block.q = q.segment(block.offset, block.size);
+    system_->system(k).mass(block.q, block.mass);
+    if (block.diagonal) {
+      block.inverse_diagonal = block.mass.diagonal().cwiseInverse();
+    } else {
+      block.cholesky.compute(block.mass);
+      if (block.cholesky.info() != Eigen::Success)
+        throw Error("system '" + system_->system(k).name() +
+                    "': M(q) stopped being positive definite during the motion");
+    }
+    block.factorized = true;
+    set_valid_ = set_valid_ && block.constant;  // M^-1 W_S depends on this mass
+  }
+}
+
+void ContactDynamics::assemble_set(const VectorXd& q, std::span<const Index> set) {
+  const bool same_set = set_valid_ && std::equal(set.begin(), set.end(), set_.begin(), set_.end());
+  if (same_set && geometry_constant_) return;
+  set_.assign(set.begin(), set.end());
+  W_ = system_->jacobian_matrix(set, q);
+  // M^-1 as a sparse block-diagonal matrix, to form M^-1 W_S
+  std::vector<Eigen::Triplet<double>> entries;
+  for (const MassBlock& block : blocks_) {
+    if (block.diagonal) {
+      for (Index i = 0; i < block.size; ++i)
+        entries.emplace_back(block.offset + i, block.offset + i, block.inverse_diagonal(i));
+    } else {
+      const MatrixXd inverse = block.cholesky.solve(MatrixXd::Identity(block.size, block.size));
+      for (Index c = 0; c < block.size; ++c)
+        for (Index r = 0; r < block.size; ++r)
+          entries.emplace_back(block.offset + r, block.offset + c, inverse(r, c));
+    }
+  }
+  inverse_mass_.resize(system_->dof(), system_->dof());
+  inverse_mass_.setFromTriplets(entries.begin(), entries.end());
+  mobility_ = inverse_mass_ * W_;
+  H_ = W_.transpose() * mobility_;
+  b_.resize(Index(set.size()));
+  lambda_.resize(Index(set.size()));
+  set_valid_ = true;
+  factor_valid_ = false;
+}
+
+void ContactDynamics::evaluate(double t, const VectorXd& q, const VectorXd& v,
+                               std::span<const Index> set) {
+  factorize_masses(q);
+  for (Index k = 0; k < Index(blocks_.size()); ++k) {
+    MassBlock& block = blocks_[k];
+    auto a = free_acceleration_.segment(block.offset, block.size);
+    if (!system_->system(k).has_force()) {
+      a.setZero();
+      continue;
+    }
+    block.q = q.segment(block.offset, block.size);
+    block.v = v.segment(block.offset, block.size);
+    system_->system(k).force(t, block.q, block.v, block.force);
+    if (block.diagonal) {
+      a = block.inverse_diagonal.cwiseProduct(block.force);
+    } else {
+      a = block.force;
+      block.cholesky.solveInPlace(a);
+    }
+  }
+  if (set.empty()) return;
+  assemble_set(q, set);
+  b_.noalias() = W_.transpose() * free_acceleration_;
+  for (std::size_t k = 0; k < set.size(); ++k) b_(Index(k)) += system_->jacobian_rate(set[k], q, v);
+}
+
+const VectorXd& ContactDynamics::bilateral_force() {
+  lambda_ = -b_;
+  return solve(lambda_);
+}
+
+const VectorXd& ContactDynamics::solve(const VectorXd& rhs) {
+  if (!factor_valid_) {
+    ldlt_.compute(H_);
+    if (ldlt_.info() != Eigen::Success)
+      throw Error("the persistent contacts are redundant (H is singular); the bilateral "
+                  "contact forces are not determined");
+    factor_valid_ = true;
+  }
+  lambda_ = ldlt_.solve(rhs);
+  return lambda_;
+}
+
+void ContactDynamics::acceleration(const VectorXd& lambda, VectorXd& out) const {
+  out = free_acceleration_;
+  if (lambda.size()) out.noalias() += mobility_ * lambda;
+}
+
+}  // namespace mimpact::plugins

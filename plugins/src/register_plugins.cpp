@@ -1,0 +1,16 @@
+#include "mimpact/plugins/register_plugins.hpp"
+
+#include "mimpact/kernel/registry.hpp"
+#include "mimpact/plugins/acceleration_lcp_problem.hpp"
+#include "mimpact/plugins/event_driven_integrator.hpp"
+#include "mimpact/plugins/lzb_impact_problem.hpp"
+
+namespace mimpact::plugins {
+
+void register_plugins() {
+  kernel::integrators().add("event-driven", EventDrivenIntegrator::create);
+  kernel::impact_problems().add("lzb", LzbImpactProblem::create);
+  kernel::contact_force_problems().add("acceleration-lcp", AccelerationLcpProblem::create);
+}
+
+}  // namespace mimpact::plugins

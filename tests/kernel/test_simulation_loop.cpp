@@ -1,0 +1,203 @@
+// The generic loop of the kernel with an integrator and problems of the test's own: output
+// times, events, impacts, observers, stop, the run summary, the law check, the registry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mimpact/kernel/lagrangian_linear_tids.hpp"
+#include "mimpact/kernel/linear_relation.hpp"
+#include "mimpact/kernel/registry.hpp"
+#include "mimpact/kernel/simulation.hpp"
+#include "mimpact/numerics/error.hpp"
+
+namespace mimpact::kernel {
+namespace {
+
+class TestLaw : public NonSmoothLaw {
+ public:
+  std::string_view kind() const override { return "test"; }
+};
+class OtherLaw : public NonSmoothLaw {
+ public:
+  std::string_view kind() const override { return "other"; }
+};
+
+// Reverses the relative velocity of the closed contacts: u+ = -u-.
+class ReversingImpacts : public ImpactProblem {
+ public:
+  std::string_view name() const override { return "reversing"; }
+  void check_law(const NonSmoothLaw& law, const std::string& which) const override {
+    if (!dynamic_cast<const TestLaw*>(&law)) throw InvalidInput(which + ": not a test law");
+  }
+  ImpactReport solve(NonSmoothDynamicalSystem& system, std::span<const Index> closed,
+                     double time) override {
+    ++calls;
+    ImpactReport report;
+    report.time = time;
+    report.interactions.assign(closed.begin(), closed.end());
+    VectorXd v = system.system(0).velocity();
+    system.system(0).set_state(system.system(0).position(), -v);
+    return report;
+  }
+  int calls = 0;
+};
+
+class NoForces : public ContactForceProblem {
+ public:
+  std::string_view name() const override { return "none"; }
+  void check_law(const NonSmoothLaw&, const std::string&) const override {}
+  ContactForces solve(const NonSmoothDynamicalSystem&, std::span<const Index> persistent, double,
+                      const VectorXd&, const VectorXd&) override {
+    ContactForces forces;
+    forces.interactions.assign(persistent.begin(), persistent.end());
+    forces.solved = true;
+    return forces;
+  }
+};
+
+// Uniform motion of system 0, with an impact of interaction 0 every `period` seconds.
+class PeriodicImpacts : public OneStepIntegrator {
+ public:
+  explicit PeriodicImpacts(double period) : period_(period) {}
+  std::string_view name() const override { return "periodic"; }
+  void initialize(NonSmoothDynamicalSystem& system, double start, ImpactProblem& impacts,
+                  ContactForceProblem&) override {
+    system_ = &system;
+    impacts_ = &impacts;
+    time_ = start;
+  }
+  StepReport advance(double target) override {
+    StepReport report;
+    const double next_event = (std::floor(time_ / period_ + 1e-9) + 1.0) * period_;
+    const double end = std::min(target, next_event);
+    DynamicalSystem& body = system_->system(0);
+    body.set_state(body.position() + (end - time_) * body.velocity(), body.velocity());
+    time_ = end;
+    report.time = end;
+    report.smooth_steps = 1;
+    if (end == next_event) {
+      report.event = true;
+      report.closing = {0};
+      const std::vector<Index> closed{0};
+      report.impact = impacts_->solve(*system_, closed, end);
+    }
+    return report;
+  }
+  double time() const override { return time_; }
+
+ private:
+  double period_;
+  NonSmoothDynamicalSystem* system_ = nullptr;
+  ImpactProblem* impacts_ = nullptr;
+  double time_ = 0.0;
+};
+
+std::shared_ptr<NonSmoothDynamicalSystem> one_body(std::shared_ptr<NonSmoothLaw> law) {
+  auto system = std::make_shared<NonSmoothDynamicalSystem>();
+  LagrangianLinearTIDS::Matrices matrices;
+  matrices.mass = MatrixXd::Identity(1, 1);
+  auto body = std::make_shared<LagrangianLinearTIDS>(VectorXd::Constant(1, 1.0),
+                                                     VectorXd::Constant(1, 2.0), matrices, "body");
+  system->add(body);
+  system->add(std::make_shared<Interaction>(
+      body, std::make_shared<LinearRelation>(RowVectorXd::Ones(1), 0.0), std::move(law), "c"));
+  return system;
+}
+
+class Recorder : public SimulationObserver {
+ public:
+  void on_start(const Simulation&) override { ++starts; }
+  void on_output(const Simulation& simulation) override {
+    outputs.push_back(simulation.time());
+    positions.push_back(simulation.system().system(0).position()(0));
+  }
+  void on_event(const Simulation& simulation, const StepReport&) override {
+    events.push_back(simulation.time());
+  }
+  void on_impact(const Simulation& simulation, const ImpactReport& report) override {
+    impacts.push_back(report.time);
+    if (stop_after_impacts && int(impacts.size()) == stop_after_impacts)
+      const_cast<Simulation&>(simulation).stop();
+  }
+  void on_end(const Simulation&) override { ++ends; }
+  std::vector<double> outputs, positions, events, impacts;
+  int starts = 0, ends = 0, stop_after_impacts = 0;
+};
+
+TEST(SimulationLoop, OutputsEventsAndImpactsInTimeOrder) {
+  auto impacts = std::make_unique<ReversingImpacts>();
+  ReversingImpacts& counter = *impacts;
+  Simulation simulation(one_body(std::make_shared<TestLaw>()),
+                        std::make_unique<PeriodicImpacts>(0.3), std::move(impacts),
+                        std::make_unique<NoForces>());
+  simulation.schedule_outputs(0.0, 0.25, 1.0);
+  Recorder recorder;
+  simulation.add_observer(recorder);
+  const RunSummary summary = simulation.run(0.0, 1.0);
+
+  EXPECT_EQ(summary.status, RunStatus::reached_end);
+  EXPECT_DOUBLE_EQ(summary.end_time, 1.0);
+  EXPECT_EQ(summary.events, 3);  // 0.3, 0.6, 0.9
+  EXPECT_EQ(summary.impacts, 3);
+  EXPECT_EQ(counter.calls, 3);
+  EXPECT_EQ(summary.advances, 3 + 4);  // three events, four output times reached
+  EXPECT_EQ(recorder.outputs, (std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0}));
+  ASSERT_EQ(recorder.impacts.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(recorder.impacts[k], 0.3 * (k + 1), 1e-15);
+  // the velocity 2 m/s reverses at each impact: x(0.75) = 1 + 2*0.3 - 2*0.3 + 2*0.15
+  EXPECT_NEAR(recorder.positions[3], 1.3, 1e-12);
+  EXPECT_EQ(recorder.starts, 1);
+  EXPECT_EQ(recorder.ends, 1);
+}
+
+TEST(SimulationLoop, StopEndsTheRunAfterTheCurrentAdvance) {
+  Simulation simulation(one_body(std::make_shared<TestLaw>()),
+                        std::make_unique<PeriodicImpacts>(0.3),
+                        std::make_unique<ReversingImpacts>(), std::make_unique<NoForces>());
+  Recorder recorder;
+  recorder.stop_after_impacts = 2;
+  simulation.add_observer(recorder);
+  const RunSummary summary = simulation.run(0.0, 10.0);
+  EXPECT_EQ(summary.status, RunStatus::stopped);
+  EXPECT_NEAR(summary.end_time, 0.6, 1e-15);
+  EXPECT_EQ(summary.impacts, 2);
+}
+
+TEST(SimulationLoop, ALawTheImpactProblemCannotHandleIsRefusedBeforeTheRun) {
+  Simulation simulation(one_body(std::make_shared<OtherLaw>()),
+                        std::make_unique<PeriodicImpacts>(0.3),
+                        std::make_unique<ReversingImpacts>(), std::make_unique<NoForces>());
+  Recorder recorder;
+  simulation.add_observer(recorder);
+  EXPECT_THROW(simulation.run(0.0, 1.0), InvalidInput);
+  EXPECT_EQ(recorder.starts, 0);
+}
+
+TEST(Registry, CreatesByNameAndNamesWhatIsRegistered) {
+  Registry<OneStepIntegrator> registry("one-step integrator");
+  registry.add("periodic", [](const Parameters& parameters) {
+    parameters.allow_only("periodic", {"period"});
+    return std::make_unique<PeriodicImpacts>(parameters.get("period", 1.0));
+  });
+  EXPECT_EQ(registry.create("periodic", {{"period", 0.5}})->name(), "periodic");
+  try {
+    registry.create("event-driven");
+    FAIL();
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("no one-step integrator named \"event-driven\"; "
+                                             "registered: periodic"),
+              std::string::npos)
+        << error.what();
+  }
+  try {
+    registry.create("periodic", {{"perod", 0.5}});
+    FAIL();
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("unknown parameter \"perod\"; allowed: period"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace mimpact::kernel
