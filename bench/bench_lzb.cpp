@@ -36,6 +36,22 @@ void BM_C1WholeImpact(benchmark::State& state) {
 }
 BENCHMARK(BM_C1WholeImpact)->Unit(benchmark::kMillisecond);
 
+// The same impact through the kernel, as `mimpact chain` runs it: the chain's system, the
+// event-driven integrator, the LZB impact problem, Delassus assembly, the simulation loop.
+void BM_C1ThroughKernel(benchmark::State& state) {
+  const chain::ChainModel model =
+      chain::build_chain_model(chain::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
+  numerics::LzbOptions options;
+  options.delta_p = 1e-6;
+  chain::ChainImpact impact;
+  for (auto _ : state) {
+    impact = chain::simulate_chain_impact(model, options);
+    benchmark::DoNotOptimize(impact.velocity_after.data());
+  }
+  state.counters["steps"] = double(impact.lzb.steps);
+}
+BENCHMARK(BM_C1ThroughKernel)->Unit(benchmark::kMillisecond);
+
 // A fixed budget of impulse steps on chains of 20, 1 000 and 100 000 beads (the 20-bead
 // impact ends before the budget). The work of a step follows the contacts in the wave, so
 // the cost of a step must not grow with the chain.

@@ -23,10 +23,16 @@ echo "== ASan + UBSan build, unit tests"
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIMPACT_SANITIZE=ON \
   -DMIMPACT_BUILD_BENCHMARKS=OFF >/dev/null
 unit_tests=(test_lemke test_lcp_file test_contact_law test_delassus test_lzb_impulse_integrator
-            test_lzb_allocation test_chain_scene)
+            test_lzb_allocation test_kernel_model test_simulation_loop test_event_location
+            test_lzb_impact_problem test_registered_plugins test_chain_scene)
 cmake --build build/sanitize -j"$jobs" --target "${unit_tests[@]}"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build/sanitize -j"$jobs" -L unit --output-on-failure
+
+echo "== the kernel and its tests without plugins/"
+cmake -S . -B build/kernel-only -DCMAKE_BUILD_TYPE=Release -DMIMPACT_BUILD_PLUGINS=OFF >/dev/null
+cmake --build build/kernel-only -j"$jobs"
+ctest --test-dir build/kernel-only -j"$jobs" --output-on-failure
 
 echo "== installed package: find_package(mimpact) from an application"
 rm -rf build/install build/linking

@@ -9,6 +9,7 @@
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/kernel/scleronomous_relation.hpp"
+#include "../support/error_of.hpp"
 #include "mimpact/numerics/error.hpp"
 
 namespace mimpact::kernel {
@@ -20,14 +21,7 @@ class TestLaw : public NonSmoothLaw {
   std::string_view kind() const override { return "test"; }
 };
 
-std::string error_of(const std::function<void()>& run) {
-  try {
-    run();
-  } catch (const InvalidInput& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 std::shared_ptr<LagrangianLinearTIDS> point(double x, double v, double m, const std::string& name) {
   LagrangianLinearTIDS::Matrices matrices;

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "../support/uniform_chain.hpp"
+#include "../support/error_of.hpp"
 #include "mimpact/numerics/error.hpp"
 
 namespace mimpact::numerics {
@@ -246,14 +247,7 @@ TEST(DistributingLaw, EnteringAndLoadedContactsFollowEquations13And11) {
 
 // --- bad input --------------------------------------------------------------------------
 
-std::string error_of(const std::function<void()>& run) {
-  try {
-    run();
-  } catch (const InvalidInput& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 TEST(LzbInput, EveryInvalidInputIsNamed) {
   const Eigen::SparseMatrix<double> H = testing::uniform_chain_delassus(3, 0.03);
