@@ -173,6 +173,22 @@ TEST(SimulationLoop, ALawTheImpactProblemCannotHandleIsRefusedBeforeTheRun) {
   EXPECT_EQ(recorder.starts, 0);
 }
 
+TEST(SimulationLoop, ANonPositiveMassIsRefusedBeforeTheRun) {
+  auto system = std::make_shared<NonSmoothDynamicalSystem>();
+  LagrangianLinearTIDS::Matrices matrices;
+  matrices.mass = MatrixXd::Constant(1, 1, 0.0);
+  system->add(std::make_shared<LagrangianLinearTIDS>(VectorXd::Zero(1), VectorXd::Zero(1), matrices,
+                                                     "massless"));
+  Simulation simulation(system, std::make_unique<PeriodicImpacts>(0.3),
+                        std::make_unique<ReversingImpacts>(), std::make_unique<NoForces>());
+  try {
+    simulation.run(0.0, 1.0);
+    FAIL();
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("system 'massless'"), std::string::npos) << error.what();
+  }
+}
+
 TEST(Registry, CreatesByNameAndNamesWhatIsRegistered) {
   Registry<OneStepIntegrator> registry("one-step integrator");
   registry.add("periodic", [](const Parameters& parameters) {
