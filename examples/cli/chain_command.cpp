@@ -3,11 +3,13 @@
 #include <boost/program_options.hpp>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <optional>
 
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "mimpact/chain/chain_impact.hpp"
+#include "mimpact/chain/chain_recorder.hpp"
 #include "mimpact/numerics/error.hpp"
 #include "output_directory.hpp"
 
@@ -17,11 +19,13 @@ namespace po = boost::program_options;
 
 namespace {
 
-// Reports the impulse steps on stderr while a long impact runs.
+// Reports the impulse steps on stderr while a long impact runs, every two million steps.
 class ProgressReporter : public numerics::ImpactObserver {
  public:
   void observe(const numerics::ImpactSample& sample) override {
-    if (sample.step == 0) return;
+    const std::int64_t mark = sample.step / 2'000'000;
+    if (mark == last_mark_) return;
+    last_mark_ = mark;
     std::fprintf(stderr, "\r  %lld impulse steps, t = %.6g s", (long long)sample.step, sample.time);
     std::fflush(stderr);
     reported_ = true;
@@ -31,7 +35,21 @@ class ProgressReporter : public numerics::ImpactObserver {
   }
 
  private:
+  std::int64_t last_mark_ = 0;
   bool reported_ = false;
+};
+
+// Hands every sample to several observers.
+class Observers : public numerics::ImpactObserver {
+ public:
+  void add(numerics::ImpactObserver& observer) { observers_.push_back(&observer); }
+  void observe(const numerics::ImpactSample& sample) override {
+    for (numerics::ImpactObserver* observer : observers_) observer->observe(sample);
+  }
+  bool empty() const { return observers_.empty(); }
+
+ private:
+  std::vector<numerics::ImpactObserver*> observers_;
 };
 
 }  // namespace
@@ -59,16 +77,27 @@ int chain_command(const std::vector<std::string>& arguments) {
   options.delta_p = *delta_p;
   std::string why;
   if (!options.is_valid(&why)) throw InvalidInput("--delta-p: " + why);
-  const bool show_progress = !quiet && isatty(STDERR_FILENO);
-  ProgressReporter progress;
-  if (show_progress) {
-    options.sample_every = 2'000'000;
-    options.sampled_contacts = {0};
-  }
-
   const chain::ChainModel model = chain::build_chain_model(scene);
+  const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
+  chain::ChainRecorder recorder(model, scene.record);
+  ProgressReporter progress;
+  Observers observers;
+  if (recording && !out_dir.empty()) {
+    recorder.configure(options);
+    observers.add(recorder);
+  }
+  if (!quiet && isatty(STDERR_FILENO)) {
+    if (observers.empty()) {
+      options.sample_every = 2'000'000;
+      options.sampled_contacts = {0};
+    }
+    observers.add(progress);
+  }
+  if (recording && out_dir.empty() && !quiet)
+    std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
+
   const chain::ChainImpact impact =
-      chain::simulate_chain_impact(model, options, show_progress ? &progress : nullptr);
+      chain::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
   const nlohmann::ordered_json summary = chain::chain_summary(model, impact, *delta_p);
 
   if (!quiet)
@@ -78,7 +107,13 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (out_dir.empty()) {
     std::cout << summary.dump(2) << "\n";
   } else {
-    write_output_directory(out_dir, {{"summary.json", summary.dump(2) + "\n"}});
+    std::map<std::string, std::string> files{{"summary.json", summary.dump(2) + "\n"}};
+    if (recording) {
+      const chain::ChainTimeSeries series = recorder.series(impact);
+      if (!series.contacts.empty()) files["forces.csv"] = series.forces_csv();
+      if (!series.bodies.empty()) files["velocities.csv"] = series.velocities_csv();
+    }
+    write_output_directory(out_dir, files);
   }
   return 0;
 }

@@ -91,8 +91,21 @@ TEST(ChainScene, EveryBadFieldIsNamed) {
   EXPECT_TRUE(has(error_of(with("\"count\": 3", "\"count\": 2.5")), "an integer >= 1"));
   EXPECT_TRUE(has(error_of(with("\"velocity\": 0.5", "\"velocity\": -0.5")),
                   "strikers[0].velocity = -0.5 is invalid; allowed: > 0 (m/s, towards the chain)"));
-  EXPECT_TRUE(has(error_of(with("\"side\": \"left\"", "\"side\": \"right\"")),
-                  "strikers[0].side = \"right\" is not supported yet"));
+  EXPECT_TRUE(has(error_of(with("\"side\": \"left\"", "\"side\": \"up\"")),
+                  "strikers[0].side = \"up\" is invalid; allowed: \"left\", \"right\""));
+  EXPECT_TRUE(has(error_of(with("\"strikers\": [{\"side\": \"left\", \"radius\": 0.004, \"velocity\": 0.5}]",
+                                "\"strikers\": [{\"radius\": 0.004, \"velocity\": 0.5}, "
+                                "{\"side\": \"left\", \"radius\": 0.004, \"velocity\": 0.5}]")),
+                  "both on the same side"));
+  EXPECT_TRUE(has(error_of(with("\"side\": \"left\"", "\"side\": \"right\"").replace(
+                      0, 1, "{\"wall\": {},")),
+                  "a right striker and a wall"));
+  EXPECT_TRUE(has(error_of(with("\"impact\": {\"delta_p\": 1e-6}",
+                                "\"impact\": {\"delta_p\": 1e-6}, \"record\": {\"contacts\": [5]}")),
+                  "record.contacts[0] = 5 is invalid; allowed: a contact index in [0, 5)"));
+  EXPECT_TRUE(has(error_of(with("\"impact\": {\"delta_p\": 1e-6}",
+                                "\"impact\": {\"delta_p\": 1e-6}, \"record\": {\"every\": 0}")),
+                  "record.every = 0 is invalid"));
   EXPECT_TRUE(has(error_of(with("\"model\": \"mono-stiffness\"", "\"model\": \"soft\"")),
                   "contact.model = \"soft\" is invalid"));
   EXPECT_TRUE(has(error_of(with("\"exponent\": 1.5", "\"exponent\": 1.0")),
@@ -102,6 +115,33 @@ TEST(ChainScene, EveryBadFieldIsNamed) {
                   "material.density is string"));
   EXPECT_TRUE(has(error_of(with("\"delta_p\": 1e-6", "\"delta_p\": 0")), "impact.delta_p = 0"));
   EXPECT_TRUE(has(error_of(with("\"poisson\": 0.3", "\"poisson\": 0.5")), "material.poisson = 0.5"));
+}
+
+TEST(ChainScene, RightStrikerAndWallBuildTheirBodiesAndContacts) {
+  // a right striker is the last body, moving left; its gap sets its position
+  ChainScene scene = parse_chain_scene(
+      with("\"strikers\": [{\"side\": \"left\", \"radius\": 0.004, \"velocity\": 0.5}]",
+           "\"strikers\": [{\"side\": \"left\", \"radius\": 0.004, \"velocity\": 0.5},"
+           " {\"side\": \"right\", \"radius\": 0.003, \"velocity\": 0.25, \"gap\": 0.001}]"),
+      "two.json");
+  ChainModel model = build_chain_model(scene);
+  ASSERT_EQ(model.body_count(), 7);
+  ASSERT_EQ(model.contact_count(), 6);
+  EXPECT_EQ(model.velocity(6), -0.25);
+  EXPECT_NEAR(model.position(6) - model.position(5), 0.005 + 0.003 + 0.001, 1e-15);
+  EXPECT_EQ(model.u_minus(5), -0.25);
+  EXPECT_EQ(model.striker_arrivals, (std::vector<double>{0.0, 0.001 / 0.25}));
+
+  // a wall after the last bead: one more contact, last, against an immovable body
+  scene = parse_chain_scene(std::string(kValid).replace(1, 0, "\"wall\": {},"), "wall.json");
+  model = build_chain_model(scene);
+  ASSERT_EQ(model.contact_count(), 6);
+  EXPECT_TRUE(model.has_wall);
+  const Eigen::MatrixXd H = model.H;
+  EXPECT_NEAR(H(5, 5), 1.0 / model.mass(5), 1e-9);  // the wall does not move
+  EXPECT_NEAR(H(4, 5), -1.0 / model.mass(5), 1e-9);
+  const chain::Material steel{7780, 203e9, 0.3}, aluminium{2700, 70e9, 0.33};
+  EXPECT_NEAR(model.laws[5].stiffness, hertz_stiffness_wall(0.005, aluminium, steel), 1e-3);
 }
 
 TEST(ChainScene, MaterialFallsBackToTheTopLevelOne) {

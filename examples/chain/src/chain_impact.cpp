@@ -1,5 +1,6 @@
 #include "mimpact/chain/chain_impact.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 
@@ -14,19 +15,59 @@ namespace mimpact::chain {
 
 namespace {
 
-// Ends the run at the first impact and keeps what it did.
-class FirstImpact : public kernel::SimulationObserver {
+// Keeps every impact of the run and ends it with the impact of the last striker to arrive.
+class Impacts : public kernel::SimulationObserver {
  public:
-  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
-    impact = report;
-    const kernel::NonSmoothDynamicalSystem& system = simulation.system();
-    velocity_after.resize(system.system_count());
-    for (kernel::Index k = 0; k < system.system_count(); ++k)
-      velocity_after(k) = system.system(k).velocity()(0);
-    const_cast<kernel::Simulation&>(simulation).stop();
+  Impacts(const ChainModel& model, const plugins::LzbImpactProblem& lzb, double last_arrival)
+      : model_(model), lzb_(lzb), last_arrival_(last_arrival) {
+    const Eigen::Index m = model.contact_count();
+    total_.impulse = Eigen::VectorXd::Zero(m);
+    total_.max_force = Eigen::VectorXd::Zero(m);
+    total_.time_of_max_force = Eigen::VectorXd::Zero(m);
   }
-  std::optional<kernel::ImpactReport> impact;
-  Eigen::VectorXd velocity_after;
+
+  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
+    const kernel::NonSmoothDynamicalSystem& system = simulation.system();
+    Eigen::VectorXd velocity(system.system_count());
+    for (kernel::Index k = 0; k < system.system_count(); ++k) velocity(k) = system.system(k).velocity()(0);
+    if (result_.impact_times.empty()) result_.impact_time = report.time;
+    const double offset = report.time - result_.impact_time;
+    Eigen::VectorXd impulse = Eigen::VectorXd::Zero(model_.contact_count());
+    for (std::size_t k = 0; k < report.interactions.size(); ++k) {
+      const kernel::Index j = report.interactions[k];
+      impulse(j) = report.impulse(Eigen::Index(k));
+      if (report.max_force(Eigen::Index(k)) > total_.max_force(j)) {
+        total_.max_force(j) = report.max_force(Eigen::Index(k));
+        total_.time_of_max_force(j) = offset + report.time_of_max_force(Eigen::Index(k));
+      }
+    }
+    total_.impulse += impulse;
+    total_.steps += lzb_.last_result().steps;
+    total_.contact_steps += lzb_.last_result().contact_steps;
+    total_.residual_energy += lzb_.last_result().residual_energy;
+    total_.duration = offset + report.duration;
+    result_.wall_time += report.wall_time;
+    result_.impact_times.push_back(report.time);
+    result_.velocities_before.push_back(
+        velocity - (model_.W * impulse).cwiseQuotient(model_.mass));
+    result_.velocity_after = velocity;
+    if (report.time >= last_arrival_ - 1e-9) const_cast<kernel::Simulation&>(simulation).stop();
+  }
+
+  ChainImpact result() {
+    if (result_.impact_times.empty())
+      throw Error("the strikers never reached the chain");  // a validated scene cannot get here
+    total_.velocity = model_.W.transpose() * result_.velocity_after;
+    result_.lzb = total_;
+    return result_;
+  }
+
+ private:
+  const ChainModel& model_;
+  const plugins::LzbImpactProblem& lzb_;
+  double last_arrival_;
+  numerics::LzbResult total_;
+  ChainImpact result_;
 };
 
 }  // namespace
@@ -42,19 +83,12 @@ ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOp
                                 std::make_unique<plugins::EventDrivenIntegrator>(),
                                 std::move(impacts),
                                 std::make_unique<plugins::AccelerationLcpProblem>());
-  FirstImpact first;
-  simulation.add_observer(first);
-  // the striker reaches the first bead at gap / V; give it twice that
-  const double gap = model.position(1) - model.position(0) - model.radius(0) - model.radius(1);
-  simulation.run(0.0, 2.0 * gap / model.velocity(0) + 1.0);
-  if (!first.impact)
-    throw Error("the striker never reached the chain");  // a validated scene cannot get here
-  ChainImpact impact;
-  impact.lzb = lzb.last_result();
-  impact.velocity_after = first.velocity_after;
-  impact.impact_time = first.impact->time;
-  impact.wall_time = first.impact->wall_time;
-  return impact;
+  const double last_arrival =
+      *std::max_element(model.striker_arrivals.begin(), model.striker_arrivals.end());
+  Impacts all(model, lzb, last_arrival);
+  simulation.add_observer(all);
+  simulation.run(0.0, 2.0 * last_arrival + 1.0);
+  return all.result();
 }
 
 ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
@@ -68,6 +102,8 @@ ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   impact.velocity_after =
       model.velocity + (model.W * impact.lzb.impulse).cwiseQuotient(model.mass);
+  impact.impact_times = {0.0};
+  impact.velocities_before = {model.velocity};
   return impact;
 }
 
@@ -86,6 +122,7 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
       {"delta_p", delta_p},
       {"post_impact_velocities", std::vector<double>(after.data(), after.data() + after.size())},
       {"impulse_steps", impact.lzb.steps},
+      {"impacts", impact.impact_times.size()},
       {"impact_time", impact.impact_time},
       {"impact_duration", impact.lzb.duration},
       {"kinetic_energy",

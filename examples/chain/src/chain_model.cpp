@@ -19,11 +19,13 @@ struct Body {
 
 std::vector<Body> bodies_of(const ChainScene& scene) {
   std::vector<Body> bodies;
-  const StrikerSpec& striker = scene.strikers.front();
-  bodies.push_back({striker.radius, striker.material, striker.velocity});
+  if (const StrikerSpec* left = scene.striker(Side::left))
+    bodies.push_back({left->radius, left->material, left->velocity});
   for (const SegmentSpec& segment : scene.segments)
     for (int k = 0; k < segment.count; ++k)
       bodies.push_back({segment.radius * std::pow(1.0 - segment.taper, k), segment.material, 0.0});
+  if (const StrikerSpec* right = scene.striker(Side::right))
+    bodies.push_back({right->radius, right->material, -right->velocity});
   return bodies;
 }
 
@@ -42,24 +44,44 @@ ChainModel build_chain_model(const ChainScene& scene) {
     model.mass(i) = bead_mass(bodies[i].radius, bodies[i].material);
     model.velocity(i) = bodies[i].velocity;
   }
-  model.position(1) = 0.0;
-  model.position(0) = -(model.radius(0) + model.radius(1)) - scene.strikers.front().gap;
-  for (Eigen::Index i = 2; i < n; ++i)
+  // touching bodies left to right, the first bead at 0; strikers off by their gaps
+  const StrikerSpec* left = scene.striker(Side::left);
+  const StrikerSpec* right = scene.striker(Side::right);
+  const Eigen::Index first_bead = left ? 1 : 0;
+  model.position(first_bead) = 0.0;
+  for (Eigen::Index i = first_bead + 1; i < n; ++i)
     model.position(i) = model.position(i - 1) + model.radius(i - 1) + model.radius(i);
+  if (left) {
+    model.position(0) = -(model.radius(0) + model.radius(1)) - left->gap;
+    model.striker_arrivals.push_back(left->gap / left->velocity);
+  }
+  if (right) {
+    model.position(n - 1) += right->gap;
+    model.striker_arrivals.push_back(right->gap / right->velocity);
+  }
 
   std::vector<Eigen::Triplet<double>> gradients;
-  for (Eigen::Index i = 0; i + 1 < n; ++i) {
-    gradients.emplace_back(i, i, -1.0);
-    gradients.emplace_back(i + 1, i, 1.0);
+  auto add_law = [&](double stiffness) {
     numerics::ContactLaw law;
     law.exponent = scene.contact.exponent;
     law.restitution = scene.contact.restitution;
     law.model = scene.contact.model;
-    law.stiffness = scene.contact.stiffness.value_or(hertz_stiffness(
-        bodies[i].radius, bodies[i].material, bodies[i + 1].radius, bodies[i + 1].material));
+    law.stiffness = scene.contact.stiffness.value_or(stiffness);
     model.laws.push_back(law);
+  };
+  for (Eigen::Index i = 0; i + 1 < n; ++i) {
+    gradients.emplace_back(i, i, -1.0);
+    gradients.emplace_back(i + 1, i, 1.0);
+    add_law(hertz_stiffness(bodies[i].radius, bodies[i].material, bodies[i + 1].radius,
+                            bodies[i + 1].material));
   }
-  model.W.resize(n, n - 1);
+  if (scene.wall) {
+    model.has_wall = true;
+    model.wall_position = model.position(n - 1) + model.radius(n - 1);
+    gradients.emplace_back(n - 1, n - 1, -1.0);
+    add_law(hertz_stiffness_wall(bodies[n - 1].radius, bodies[n - 1].material, scene.wall->material));
+  }
+  model.W.resize(n, Eigen::Index(model.laws.size()));
   model.W.setFromTriplets(gradients.begin(), gradients.end());
   model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
   model.u_minus = model.W.transpose() * model.velocity;
@@ -74,17 +96,23 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const Chain
     matrices.mass = Eigen::MatrixXd::Constant(1, 1, model.mass(i));
     bodies.push_back(std::make_shared<kernel::LagrangianLinearTIDS>(
         Eigen::VectorXd::Constant(1, model.position(i)),
-        Eigen::VectorXd::Constant(1, model.velocity(i)), matrices,
-        i == 0 ? "striker" : "bead " + std::to_string(i)));
+        Eigen::VectorXd::Constant(1, model.velocity(i)), matrices, "body " + std::to_string(i)));
     system->add(bodies.back());
   }
-  for (Eigen::Index i = 0; i < model.contact_count(); ++i) {
+  const Eigen::Index n = model.body_count();
+  for (Eigen::Index i = 0; i + 1 < n; ++i) {
     // g = x_{i+1} - x_i - (R_i + R_{i+1}) on the stacked (x_i, x_{i+1})
     auto relation = std::make_shared<kernel::LinearRelation>(
         Eigen::RowVector2d(-1.0, 1.0), -(model.radius(i) + model.radius(i + 1)));
     system->add(std::make_shared<kernel::Interaction>(
         bodies[i], bodies[i + 1], relation, std::make_shared<plugins::LzbLaw>(model.laws[i]),
         "contact " + std::to_string(i)));
+  }
+  if (model.has_wall) {
+    auto relation = std::make_shared<kernel::LinearRelation>(
+        Eigen::RowVectorXd::Constant(1, -1.0), model.wall_position - model.radius(n - 1));
+    system->add(std::make_shared<kernel::Interaction>(
+        bodies[n - 1], relation, std::make_shared<plugins::LzbLaw>(model.laws.back()), "wall"));
   }
   return system;
 }

@@ -120,16 +120,36 @@ StrikerSpec read_striker(const json& value, const std::string& path,
                          const std::optional<Material>& fallback, const std::string& source) {
   ObjectReader reader(value, path, source);
   reader.allow_only({"side", "radius", "velocity", "gap", "material"});
-  const std::string side = reader.has("side") ? reader.text("side") : "left";
-  if (side != "left")
-    reader.fail(reader.field("side") + " = \"" + side +
-                "\" is not supported yet; allowed: \"left\"");
   StrikerSpec striker;
+  const std::string side = reader.has("side") ? reader.text("side") : "left";
+  if (side == "left") {
+    striker.side = Side::left;
+  } else if (side == "right") {
+    striker.side = Side::right;
+  } else {
+    reader.fail(reader.field("side") + " = \"" + side + "\" is invalid; allowed: \"left\", \"right\"");
+  }
   striker.radius = reader.number("radius", positive, "> 0 (m)");
   striker.velocity = reader.number("velocity", positive, "> 0 (m/s, towards the chain)");
   striker.gap = reader.number_or("gap", 0.0, [](double x) { return x >= 0.0; }, ">= 0 (m)");
   striker.material = material_of(reader, fallback, source);
   return striker;
+}
+
+std::vector<int> read_indices(const ObjectReader& reader, const std::string& key, int count,
+                              const std::string& what) {
+  std::vector<int> indices;
+  if (!reader.has(key)) return indices;
+  const json& list = reader.at(key);
+  if (!list.is_array()) reader.fail(reader.field(key) + " must be an array of " + what + " indices");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string field = reader.field(key) + "[" + std::to_string(k) + "]";
+    if (!list[k].is_number_integer() || list[k].get<int>() < 0 || list[k].get<int>() >= count)
+      reader.fail(field + " = " + list[k].dump() + " is invalid; allowed: a " + what +
+                  " index in [0, " + std::to_string(count) + ")");
+    indices.push_back(list[k].get<int>());
+  }
+  return indices;
 }
 
 ContactSpec read_contact(const ObjectReader& scene, const std::string& source) {
@@ -167,7 +187,7 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
     throw InvalidInput(source + ": malformed JSON: " + error.what());
   }
   ObjectReader scene(document, "", source);
-  scene.allow_only({"material", "chain", "strikers", "contact", "impact"});
+  scene.allow_only({"material", "chain", "strikers", "wall", "contact", "impact", "record"});
   ChainScene result;
   std::optional<Material> fallback;
   if (scene.has("material")) fallback = read_material(scene, "material", source);
@@ -182,9 +202,23 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
         read_segment(segments[k], "chain.segments[" + std::to_string(k) + "]", fallback, source));
 
   const json& strikers = scene.at("strikers");
-  if (!strikers.is_array() || strikers.size() != 1)
-    scene.fail("strikers must be an array of exactly one striker (side \"left\") for now");
-  result.strikers.push_back(read_striker(strikers[0], "strikers[0]", fallback, source));
+  if (!strikers.is_array() || strikers.empty() || strikers.size() > 2)
+    scene.fail("strikers must be an array of one or two strikers");
+  for (std::size_t k = 0; k < strikers.size(); ++k)
+    result.strikers.push_back(
+        read_striker(strikers[k], "strikers[" + std::to_string(k) + "]", fallback, source));
+  if (result.strikers.size() == 2 && result.strikers[0].side == result.strikers[1].side)
+    scene.fail("strikers[0] and strikers[1] are both on the same side; allowed: one striker "
+               "per side");
+
+  if (scene.has("wall")) {
+    ObjectReader wall(scene.at("wall"), "wall", source);
+    wall.allow_only({"material"});
+    result.wall = WallSpec{material_of(wall, fallback, source)};
+    if (result.striker(Side::right))
+      scene.fail("a right striker and a wall: the wall touches the last bead on the right; "
+                 "allowed: one of them");
+  }
 
   result.contact = read_contact(scene, source);
   if (scene.has("impact")) {
@@ -192,7 +226,28 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
     impact.allow_only({"delta_p"});
     result.delta_p = impact.number("delta_p", positive, "> 0 (N s)");
   }
+  if (scene.has("record")) {
+    ObjectReader record(scene.at("record"), "record", source);
+    record.allow_only({"contacts", "bodies", "every"});
+    result.record.contacts = read_indices(record, "contacts", result.contact_count(), "contact");
+    result.record.bodies = read_indices(record, "bodies", result.body_count(), "body");
+    result.record.every = int(record.number_or(
+        "every", 1, [](double x) { return x >= 1 && x == std::floor(x) && x < 2e9; },
+        "an integer >= 1 (impulse steps)"));
+  }
   return result;
+}
+
+int ChainScene::bead_count() const {
+  int count = 0;
+  for (const SegmentSpec& segment : segments) count += segment.count;
+  return count;
+}
+
+const StrikerSpec* ChainScene::striker(Side side) const {
+  for (const StrikerSpec& striker : strikers)
+    if (striker.side == side) return &striker;
+  return nullptr;
 }
 
 ChainScene load_chain_scene(const std::filesystem::path& path) {

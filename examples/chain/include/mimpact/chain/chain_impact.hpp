@@ -3,23 +3,30 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "mimpact/chain/chain_model.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::chain {
 
-// The outcome of the multiple impact of a chain: the striker flies to the first bead (if
-// there is a gap), then the shock crosses the touching beads in one impact.
+// The outcome of the impacts of a chain: the strikers fly to the chain (if there are gaps),
+// the shock crosses the touching beads; with strikers arriving at different times, one
+// impact after the other. Per-contact results are summed (impulses, steps) or taken at
+// their peak over all impacts, times counted from the first impact.
 struct ChainImpact {
-  numerics::LzbResult lzb;
-  Eigen::VectorXd velocity_after;  // v+ = v- + M^-1 W P, per body (m/s)
-  double impact_time = 0.0;        // s, when the striker touched the first bead
-  double wall_time = 0.0;          // s spent in the impact computation
+  numerics::LzbResult lzb;         // aggregated over the impacts
+  Eigen::VectorXd velocity_after;  // per body (m/s), after the last impact
+  double impact_time = 0.0;        // s, when the first impact began
+  double wall_time = 0.0;          // s spent in the impact computations
+  // per impact, in order: when it began (s) and the body velocities just before it
+  std::vector<double> impact_times;
+  std::vector<Eigen::VectorXd> velocities_before;
 };
 
 // Through the kernel: the chain's system, the event-driven integrator, the LZB impact
-// problem; the run ends with the first impact.
+// problem; the run ends with the impact of the last striker to arrive. `observer` sees the
+// impulse steps of every impact (sampling as `options` says).
 ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
                                   numerics::ImpactObserver* observer = nullptr);
 

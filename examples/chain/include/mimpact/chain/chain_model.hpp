@@ -11,15 +11,19 @@
 
 namespace mimpact::chain {
 
-// A chain of beads on a line (LZB.md section 8): the beads touch, the striker may fly
-// towards them first. Bodies left to right, striker first; contact i joins bodies i and
-// i + 1, g_i = x_{i+1} - x_i - (R_i + R_{i+1}). Once the striker touches, every contact
-// belongs to one multiple impact.
+// A chain of beads on a line (LZB.md section 8): the beads touch, strikers may fly towards
+// either end first, a rigid wall may touch the last bead. Bodies left to right (a left
+// striker, the beads, a right striker); contact i joins bodies i and i + 1,
+// g_i = x_{i+1} - x_i - (R_i + R_{i+1}); the wall's contact is last, g = x_wall - x_N - R_N.
 struct ChainModel {
   Eigen::VectorXd radius;         // m, per body
   Eigen::VectorXd mass;           // kg, per body
   Eigen::VectorXd position;       // m, of the centres at t = 0 (first bead at 0)
   Eigen::VectorXd velocity;       // pre-impact velocity (m/s, > 0 to the right), per body
+  bool has_wall = false;
+  double wall_position = 0.0;     // m, of the wall's plane
+  // when each striker touches its end bead (s): gap / speed, one per striker
+  std::vector<double> striker_arrivals;
   Eigen::SparseMatrix<double> W;  // bodies x contacts, column i = grad g_i
   Eigen::SparseMatrix<double> H;  // W^T M^-1 W, tridiagonal
   Eigen::VectorXd u_minus;        // W^T v, pre-impact relative velocities

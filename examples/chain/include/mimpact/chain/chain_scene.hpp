@@ -19,12 +19,28 @@ struct SegmentSpec {
   Material material;
 };
 
-// A bead thrown at the chain from the left.
+enum class Side { left, right };
+
+// A bead thrown at one end of the chain.
 struct StrikerSpec {
+  Side side = Side::left;
   double radius = 0.0;    // m
   double velocity = 0.0;  // m/s towards the chain, > 0
-  double gap = 0.0;       // m between the striker and the first bead, >= 0
+  double gap = 0.0;       // m between the striker and the end bead, >= 0
   Material material;
+};
+
+// A rigid immovable wall touching the last bead on the right.
+struct WallSpec {
+  Material material;
+};
+
+// What `mimpact chain --out` writes as time series: the force of these contacts and the
+// velocity of these bodies, every `every` impulse steps.
+struct RecordSpec {
+  std::vector<int> contacts;
+  std::vector<int> bodies;
+  int every = 1;
 };
 
 struct ContactSpec {
@@ -35,13 +51,21 @@ struct ContactSpec {
   std::optional<double> stiffness;
 };
 
-// A chain scene file (the format: docs/scenes.md). Bodies are numbered
-// left to right, the striker first; contact i joins bodies i and i + 1.
+// A chain scene file (the format: docs/scenes.md). Bodies are numbered left to right: a
+// left striker, the beads, a right striker; contact i joins bodies i and i + 1, and the
+// wall's contact, if any, comes last.
 struct ChainScene {
   std::vector<SegmentSpec> segments;
-  std::vector<StrikerSpec> strikers;
+  std::vector<StrikerSpec> strikers;  // one or two, on different sides
+  std::optional<WallSpec> wall;
   ContactSpec contact;
   std::optional<double> delta_p;  // N s, from "impact": {"delta_p"}
+  RecordSpec record;
+
+  int bead_count() const;
+  int body_count() const { return bead_count() + int(strikers.size()); }
+  int contact_count() const { return body_count() - 1 + (wall ? 1 : 0); }
+  const StrikerSpec* striker(Side side) const;
 };
 
 // Parses and validates a scene (JSON, comments allowed). Throws InvalidInput naming the
