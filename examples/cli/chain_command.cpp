@@ -98,7 +98,11 @@ int chain_command(const std::vector<std::string>& arguments) {
 
   const chain::ChainImpact impact =
       chain::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
-  const nlohmann::ordered_json summary = chain::chain_summary(model, impact, *delta_p);
+  const bool writes_series = recording && !out_dir.empty();
+  const chain::ChainTimeSeries series =
+      writes_series ? recorder.series(impact) : chain::ChainTimeSeries{};
+  const nlohmann::ordered_json summary =
+      chain::chain_summary(model, impact, *delta_p, writes_series ? &series : nullptr);
 
   if (!quiet)
     std::cerr << scene_file << ": " << chain::chain_report(model, impact, *delta_p);
@@ -108,8 +112,7 @@ int chain_command(const std::vector<std::string>& arguments) {
     std::cout << summary.dump(2) << "\n";
   } else {
     std::map<std::string, std::string> files{{"summary.json", summary.dump(2) + "\n"}};
-    if (recording) {
-      const chain::ChainTimeSeries series = recorder.series(impact);
+    if (writes_series) {
       if (!series.contacts.empty()) files["forces.csv"] = series.forces_csv();
       if (!series.bodies.empty()) files["velocities.csv"] = series.velocities_csv();
     }

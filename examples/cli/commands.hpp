@@ -9,5 +9,6 @@ namespace mimpact::cli {
 // Bad input throws mimpact::Error or boost::program_options::error; main reports them.
 int chain_command(const std::vector<std::string>& arguments);
 int lcp_command(const std::vector<std::string>& arguments);
+int nesterenko_command(const std::vector<std::string>& arguments);
 
 }  // namespace mimpact::cli

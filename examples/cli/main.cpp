@@ -1,6 +1,7 @@
 // mimpact: the command line of the library.
 //   mimpact chain SCENE.json [--out DIR] [--delta-p X] [--quiet]
 //   mimpact lcp FILE [--max-pivots N]
+//   mimpact nesterenko F1,F2,... [options]
 #include <boost/program_options/errors.hpp>
 #include <iostream>
 #include <string>
@@ -18,6 +19,8 @@ constexpr const char* kUsage =
     "      the multiple impact of a granular chain; prints summary.json or writes it to DIR\n"
     "  lcp FILE [--max-pivots N]\n"
     "      solves the LCP of FILE (Siconos test format) with Lemke's method; prints JSON\n"
+    "  nesterenko F1,F2,... [--radius a] [--static-force F0] [--site beads|sensor] ...\n"
+    "      speed and width of Nesterenko's solitary waves (seed 001) for these peak forces\n"
     "run 'mimpact COMMAND --help' for the options of a command\n";
 
 }  // namespace
@@ -32,11 +35,12 @@ int main(int argc, char** argv) {
   try {
     if (command == "chain") return mimpact::cli::chain_command(arguments);
     if (command == "lcp") return mimpact::cli::lcp_command(arguments);
+    if (command == "nesterenko") return mimpact::cli::nesterenko_command(arguments);
     if (command == "--help" || command == "-h" || command == "help") {
       std::cout << kUsage;
       return 0;
     }
-    std::cerr << "mimpact: unknown command \"" << command << "\"; allowed: chain, lcp\n"
+    std::cerr << "mimpact: unknown command \"" << command << "\"; allowed: chain, lcp, nesterenko\n"
               << kUsage;
     return 2;
   } catch (const boost::program_options::error& error) {

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
+
+#include "mimpact/chain/chain_recorder.hpp"
+#include "mimpact/numerics/pulse_analysis.hpp"
 #include <optional>
 
 #include "mimpact/kernel/simulation.hpp"
@@ -72,6 +76,39 @@ class Impacts : public kernel::SimulationObserver {
 
 }  // namespace
 
+// Pulses of the recorded contacts and wave speeds through beads with both contacts recorded.
+void add_pulses(const ChainModel& model, const ChainTimeSeries& series,
+                nlohmann::ordered_json& summary) {
+  using json = nlohmann::ordered_json;
+  json pulses = json::array();
+  std::map<int, double> time_of_peak;
+  for (std::size_t k = 0; k < series.contacts.size(); ++k) {
+    std::vector<double> force(series.time.size());
+    for (std::size_t r = 0; r < series.time.size(); ++r) force[r] = series.force[r][k];
+    if (std::none_of(force.begin(), force.end(), [](double f) { return f > 0.0; })) continue;
+    const numerics::PulseMeasures pulse = numerics::measure_pulse(series.time, force);
+    time_of_peak[series.contacts[k]] = pulse.time_of_peak;
+    pulses.push_back({{"contact", series.contacts[k]},
+                      {"position", contact_position(model, series.contacts[k])},
+                      {"peak", pulse.peak},
+                      {"time_of_peak", pulse.time_of_peak},
+                      {"width", pulse.width},
+                      {"front_impulse", pulse.front_impulse},
+                      {"tail_impulse", pulse.tail_impulse}});
+  }
+  summary["pulses"] = pulses;
+  json speeds = json::array();
+  for (const auto& [contact, time] : time_of_peak) {
+    const auto left = time_of_peak.find(contact - 1);
+    if (left == time_of_peak.end() || !(time > left->second)) continue;
+    const double diameter = 2.0 * model.radius(contact);  // bead `contact` lies between them
+    speeds.push_back({{"body", contact},
+                      {"position", model.position(contact)},
+                      {"speed", numerics::wave_speed(diameter, left->second, time)}});
+  }
+  summary["wave_speeds"] = speeds;
+}
+
 ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
                                   numerics::ImpactObserver* observer) {
   plugins::LzbImpactOptions impact_options;
@@ -108,7 +145,7 @@ ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
 }
 
 nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact& impact,
-                                     double delta_p) {
+                                     double delta_p, const ChainTimeSeries* series) {
   using json = nlohmann::ordered_json;
   json contacts = json::array();
   for (Eigen::Index i = 0; i < model.contact_count(); ++i)
@@ -117,7 +154,7 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
                         {"time_of_max", impact.lzb.time_of_max_force(i)},
                         {"impulse", impact.lzb.impulse(i)}});
   const Eigen::VectorXd& after = impact.velocity_after;
-  return json{
+  json summary{
       {"status", numerics::to_string(impact.lzb.status)},
       {"delta_p", delta_p},
       {"post_impact_velocities", std::vector<double>(after.data(), after.data() + after.size())},
@@ -132,6 +169,8 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
       {"momentum", {{"before", momentum(model, model.velocity)}, {"after", momentum(model, after)}}},
       {"wall_time", impact.wall_time},
       {"contacts", contacts}};
+  if (series) add_pulses(model, *series, summary);
+  return summary;
 }
 
 std::string chain_report(const ChainModel& model, const ChainImpact& impact, double delta_p) {

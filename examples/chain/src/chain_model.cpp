@@ -117,6 +117,10 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const Chain
   return system;
 }
 
+double contact_position(const ChainModel& model, Eigen::Index contact) {
+  return model.position(contact) + model.radius(contact) - model.position(0);
+}
+
 double momentum(const ChainModel& model, const Eigen::VectorXd& velocity) {
   return model.mass.dot(velocity);
 }

@@ -36,11 +36,15 @@ ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
                                            const numerics::LzbOptions& options,
                                            numerics::ImpactObserver* observer = nullptr);
 
+struct ChainTimeSeries;
+
 // The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
 // time and impulse, step count, duration, kinetic energy and momentum before and after.
-// Keys keep the order written here (ordered_json).
+// With recorded time series, also the pulse of each recorded contact (seed 000, eqs. 40-43)
+// and the wave speed through each bead whose two contacts are recorded (eq. 41). Keys keep
+// the order written here (ordered_json).
 nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact& impact,
-                                     double delta_p);
+                                     double delta_p, const ChainTimeSeries* series = nullptr);
 
 // A few lines for people: sizes, steps, duration, energy and momentum, post-impact velocities.
 std::string chain_report(const ChainModel& model, const ChainImpact& impact, double delta_p);

@@ -39,6 +39,10 @@ ChainModel build_chain_model(const ChainScene& scene);
 // interaction per contact with a LinearRelation and an LzbLaw.
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const ChainModel& model);
 
+// Where contact j touches at t = 0 (m), from the centre of the first body: x_j + R_j, or
+// the wall's plane for the wall's contact.
+double contact_position(const ChainModel& model, Eigen::Index contact);
+
 // Total momentum (N s) and kinetic energy (J) of the chain moving with `velocity`.
 double momentum(const ChainModel& model, const Eigen::VectorXd& velocity);
 double kinetic_energy(const ChainModel& model, const Eigen::VectorXd& velocity);

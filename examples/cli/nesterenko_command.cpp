@@ -1,0 +1,98 @@
+#include <boost/program_options.hpp>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <cmath>
+#include <sstream>
+
+#include "command_line.hpp"
+#include "commands.hpp"
+#include "mimpact/numerics/error.hpp"
+#include "mimpact/numerics/nesterenko.hpp"
+
+namespace mimpact::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+std::vector<double> parse_list(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !(value > 0.0))
+      throw InvalidInput("--" + option + ": \"" + item + "\" is invalid; allowed: forces > 0 (N), comma-separated");
+    values.push_back(value);
+  }
+  return values;
+}
+
+}  // namespace
+
+int nesterenko_command(const std::vector<std::string>& arguments) {
+  numerics::BeadChain chain{0.004, 2.26e11, 0.3, 7650.0};
+  double static_force = 0.0;
+  std::string site = "beads", forces_text;
+  int shape = 0;
+  po::options_description visible(
+      "mimpact nesterenko FORCES: solitary-wave theory of seed 001 for peak forces F1,F2,... (N)");
+  visible.add_options()("radius", po::value(&chain.radius)->default_value(chain.radius), "bead radius a (m)")(
+      "young", po::value(&chain.young)->default_value(chain.young), "Young's modulus (Pa)")(
+      "poisson", po::value(&chain.poisson)->default_value(chain.poisson), "Poisson's ratio")(
+      "density", po::value(&chain.density)->default_value(chain.density), "density (kg/m^3)")(
+      "static-force", po::value(&static_force)->default_value(0.0), "static force F_0 (N)")(
+      "site", po::value(&site)->default_value(site), "where F is felt: beads (sphere-sphere) or sensor (plane-sphere)")(
+      "shape", po::value(&shape)->default_value(0), "also print the pulse F(t) of the first force at this many times");
+  po::variables_map values;
+  if (!parse_command_line(arguments, visible, "forces", forces_text, values)) return 0;
+  if (site != "beads" && site != "sensor")
+    throw InvalidInput("--site \"" + site + "\" is invalid; allowed: beads, sensor");
+  if (!(static_force >= 0.0))
+    throw InvalidInput(invalid_value_message("--static-force", static_force, ">= 0 (N)"));
+  const numerics::ForceSite where =
+      site == "sensor" ? numerics::ForceSite::sensor : numerics::ForceSite::between_beads;
+  const std::vector<double> forces = parse_list(forces_text, "forces");
+
+  nlohmann::ordered_json out{{"theta", chain.theta()}, {"C", chain.C()}, {"mass", chain.mass()},
+                             {"static_force", static_force}, {"site", site}};
+  nlohmann::ordered_json waves = nlohmann::ordered_json::array();
+  for (double force : forces) {
+    if (static_force == 0.0) {
+      const double speed = numerics::solitary_wave_speed(chain, force, where);
+      waves.push_back({{"peak_force", force}, {"speed", speed},
+                       {"width", numerics::solitary_wave_width(chain, speed)}});
+    } else {
+      const numerics::PrecompressedWave wave =
+          numerics::precompressed_solitary_wave(chain, force, static_force, where);
+      waves.push_back({{"peak_force", force}, {"speed", wave.speed}, {"sound_speed", wave.sound_speed},
+                       {"strain_ratio", wave.strain_ratio}, {"y_infinity", wave.y_infinity}});
+    }
+  }
+  out["waves"] = waves;
+  if (shape > 1) {
+    nlohmann::ordered_json samples = nlohmann::ordered_json::array();
+    if (static_force > 0.0) {
+      for (const auto& [t, f] : numerics::precompressed_pulse(chain, forces.front(), static_force, where, shape))
+        samples.push_back({t, f});
+    } else {
+      const double speed = numerics::solitary_wave_speed(chain, forces.front(), where);
+      const double width = numerics::solitary_wave_width(chain, speed);
+      for (int k = 0; k < shape; ++k) {
+        const double t = 0.5 * M_PI * width * k / (shape - 1);
+        samples.push_back({t, forces.front() * std::pow(std::cos(t / width), 6)});
+      }
+    }
+    out["shape"] = samples;
+  }
+  std::cout << out.dump(2) << "\n";
+  return 0;
+}
+
+}  // namespace mimpact::cli
