@@ -88,13 +88,18 @@ void add_pulses(const ChainModel& model, const ChainTimeSeries& series,
     if (std::none_of(force.begin(), force.end(), [](double f) { return f > 0.0; })) continue;
     const numerics::PulseMeasures pulse = numerics::measure_pulse(series.time, force);
     time_of_peak[series.contacts[k]] = pulse.time_of_peak;
+    // the distinct pulses of the record, those above 1 % of its largest force
+    json train = json::array();
+    for (const numerics::Peak& peak : numerics::find_pulses(series.time, force, 0.01 * pulse.peak))
+      train.push_back({{"time", peak.time}, {"force", peak.force}});
     pulses.push_back({{"contact", series.contacts[k]},
                       {"position", contact_position(model, series.contacts[k])},
                       {"peak", pulse.peak},
                       {"time_of_peak", pulse.time_of_peak},
                       {"width", pulse.width},
                       {"front_impulse", pulse.front_impulse},
-                      {"tail_impulse", pulse.tail_impulse}});
+                      {"tail_impulse", pulse.tail_impulse},
+                      {"pulse_train", train}});
   }
   summary["pulses"] = pulses;
   json speeds = json::array();
