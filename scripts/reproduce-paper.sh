@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds mimpact, runs every experiment of SCENES.md and writes
+# docs/results/ (figures and README.md) from what the runs wrote. About a minute.
+#   bash scripts/reproduce-paper.sh [--only N|M|scaling|J|S|W]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/packages.sh
+ensure_packages "${BUILD_PACKAGES[@]}" python3-matplotlib python3-numpy
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build/release -j2 --target mimpact >/dev/null
+# Debian's Python, which python3-matplotlib provides for
+/usr/bin/python3 scripts/reproduce_paper.py --mimpact build/release/examples/cli/mimpact "$@"
