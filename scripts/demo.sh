@@ -1,11 +1,8 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds the mimpact command line and runs the main job: chain C1
-# of seed 000 (20 steel beads struck at 1 m/s) at delta_p = 1e-5. Prints the summary JSON
-# (post-impact velocities, step count, impact duration, wall time) on stdout.
+# Installs what is missing, builds mimpact and runs one experiment of the seeds end to end:
+# Nakagawa's tapered chain (seed 000, section 4), at three restitutions. Prints its report
+# (text and table) and leaves its figures in build/demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-source scripts/packages.sh
-ensure_packages "${BUILD_PACKAGES[@]}"
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/release -j2 --target mimpact >/dev/null
-build/release/examples/cli/mimpact chain examples/scenes/c1.json --delta-p 1e-5 "$@"
+bash scripts/reproduce-paper.sh --only N --out build/demo --work build/demo/runs
+echo "figures: build/demo/N_velocities.png, build/demo/N_normalized.png" >&2

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -79,19 +80,102 @@ TEST(ChainCommand, OutWritesSummaryIntoTheDirectory) {
   fs::remove_all(dir);
 }
 
-TEST(ChainCommand, BadSceneFailsInOneLineAndWritesNothing) {
-  const fs::path dir = fs::temp_directory_path() / ("mimpact_bad_" + std::to_string(::getpid()));
-  const fs::path bad = fs::temp_directory_path() / ("mimpact_bad_" + std::to_string(::getpid()) + ".json");
-  std::ofstream(bad) << R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
-    "chain": {"segments": [{"count": 5, "radius": 0.01}]},
+// Every bad scene gives one line naming the problem, a non-zero exit and no output directory.
+struct BadScene {
+  const char* name;
+  const char* from;  // a piece of the good scene, and what replaces it
+  const char* to;
+  const char* message;
+};
+
+class BadSceneFile : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneFile, FailsInOneLineAndWritesNothing) {
+  const BadScene bad = GetParam();
+  std::string text = R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+    "chain": {"segments": [{"count": 5, "radius": 0.01, "taper": 0.1}]},
     "strikers": [{"side": "left", "radius": 0.01, "velocity": 1}],
-    "contact": {"restitution": 1.2}, "impact": {"delta_p": 1e-5}})";
-  const CliRun run = mimpact("chain " + bad.string() + " --out " + dir.string());
+    "contact": {"restitution": 0.9}, "impact": {"delta_p": 1e-5}})";
+  const std::size_t at = text.find(bad.from);
+  ASSERT_NE(at, std::string::npos) << bad.from;
+  text.replace(at, std::string(bad.from).size(), bad.to);
+  const std::string id = std::to_string(::getpid()) + "_" + bad.name;
+  const fs::path dir = fs::temp_directory_path() / ("mimpact_bad_" + id);
+  const fs::path file = fs::temp_directory_path() / ("mimpact_bad_" + id + ".json");
+  std::ofstream(file) << text;
+  const CliRun run = mimpact("chain " + file.string() + " --out " + dir.string());
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.err.find("contact.restitution = 1.2 is invalid"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(bad.message), std::string::npos) << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   EXPECT_FALSE(fs::exists(dir));
-  fs::remove(bad);
+  for (const auto& entry : fs::directory_iterator(fs::temp_directory_path()))
+    EXPECT_EQ(entry.path().filename().string().find("mimpact_bad_" + id + ".partial"), std::string::npos);
+  fs::remove(file);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Issue4, BadSceneFile,
+    ::testing::Values(
+        BadScene{"malformed", "\"impact\"", "\"impact\" [", "malformed JSON"},
+        BadScene{"missing", "\"radius\": 0.01, \"taper\"", "\"taper\"", "missing field chain.segments[0].radius"},
+        BadScene{"unknown", "\"restitution\"", "\"restitutio\": 1, \"restitution\"",
+                 "unknown key \"restitutio\" in contact"},
+        BadScene{"negative_radius", "\"radius\": 0.01, \"taper\"", "\"radius\": -0.01, \"taper\"",
+                 "chain.segments[0].radius = -0.01 is invalid"},
+        BadScene{"restitution", "\"restitution\": 0.9", "\"restitution\": 1.2",
+                 "contact.restitution = 1.2 is invalid; allowed: 0 <= e <= 1"},
+        BadScene{"taper", "\"taper\": 0.1", "\"taper\": 1", "chain.segments[0].taper = 1 is invalid"},
+        BadScene{"zero_beads", "\"count\": 5", "\"count\": 0", "chain.segments[0].count = 0 is invalid"},
+        BadScene{"away", "\"velocity\": 1", "\"velocity\": -1",
+                 "strikers[0].velocity = -1 is invalid; allowed: > 0 (m/s, towards the chain)"}),
+    [](const auto& param_info) { return std::string(param_info.param.name); });
+
+TEST(ChainCommand, RecordWritesTimeSeriesThatAgreeWithTheSummary) {
+  const fs::path dir = fs::temp_directory_path() / ("mimpact_series_" + std::to_string(::getpid()));
+  const fs::path file = dir.string() + ".json";
+  fs::remove_all(dir);
+  std::ofstream(file) << R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+    "chain": {"segments": [{"count": 6, "radius": 0.01}]}, "wall": {},
+    "strikers": [{"radius": 0.01, "velocity": 1.0}], "impact": {"delta_p": 1e-5},
+    "record": {"contacts": [2, 6], "bodies": [0, 6], "every": 1}})";
+  const CliRun run = mimpact("chain " + file.string() + " --out " + dir.string() + " --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
+  auto rows = [](const fs::path& path) {
+    std::ifstream in(path);
+    std::vector<std::vector<double>> table;
+    std::string line;
+    std::getline(in, line);
+    table.push_back({});  // the header, kept apart
+    while (std::getline(in, line)) {
+      std::vector<double> row;
+      std::stringstream fields(line);
+      std::string field;
+      while (std::getline(fields, field, ',')) row.push_back(std::stod(field));
+      table.push_back(row);
+    }
+    return table;
+  };
+  std::ifstream forces_file(dir / "forces.csv");
+  std::string header;
+  std::getline(forces_file, header);
+  EXPECT_EQ(header, "time,F_2,F_6");
+  const auto forces = rows(dir / "forces.csv");
+  const auto velocities = rows(dir / "velocities.csv");
+  // every step recorded: the largest recorded force is the summary's peak
+  for (int column : {1, 2}) {
+    double peak = 0.0;
+    for (std::size_t r = 1; r < forces.size(); ++r) peak = std::max(peak, forces[r][column]);
+    const double expected = summary["contacts"][column == 1 ? 2 : 6]["max_force"];
+    EXPECT_NEAR(peak, expected, 1e-12 * expected);
+  }
+  // the last sample is the end of the impact
+  EXPECT_NEAR(velocities.back()[1], summary["post_impact_velocities"][0].get<double>(), 1e-12);
+  EXPECT_NEAR(velocities.back()[2], summary["post_impact_velocities"][6].get<double>(), 1e-12);
+  ASSERT_EQ(summary["pulses"].size(), 2u);
+  EXPECT_EQ(summary["pulses"][1]["contact"], 6);
+  fs::remove_all(dir);
+  fs::remove(file);
 }
 
 TEST(ChainCommand, BadDeltaPIsNamed) {
