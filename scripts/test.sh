@@ -23,7 +23,7 @@ echo "== ASan + UBSan build, unit tests"
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIMPACT_SANITIZE=ON \
   -DMIMPACT_BUILD_BENCHMARKS=OFF >/dev/null
 unit_tests=(test_lemke test_lcp_file test_contact_law test_delassus test_lzb_impulse_integrator
-            test_lzb_allocation test_kernel_model test_simulation_loop test_event_location
+            test_lzb_allocation test_pulse_analysis test_nesterenko test_kernel_model test_simulation_loop test_event_location
             test_lzb_impact_problem test_registered_plugins test_chain_scene)
 cmake --build build/sanitize -j"$jobs" --target "${unit_tests[@]}"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
