@@ -125,3 +125,18 @@ void ContactDynamics::acceleration(const VectorXd& lambda, VectorXd& out) const 
 }
 
 }  // namespace mimpact::plugins
+
+namespace mimpact::plugins {
+
+void ContactDynamics::apply_inverse_mass(VectorXd& x) const {
+  for (const MassBlock& block : blocks_) {
+    auto segment = x.segment(block.offset, block.size);
+    if (block.diagonal) {
+      segment = segment.cwiseProduct(block.inverse_diagonal);
+    } else {
+      block.cholesky.solveInPlace(segment);
+    }
+  }
+}
+
+}  // namespace mimpact::plugins

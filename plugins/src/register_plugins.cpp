@@ -2,6 +2,7 @@
 
 #include "mimpact/kernel/registry.hpp"
 #include "mimpact/plugins/acceleration_lcp_problem.hpp"
+#include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/plugins/event_driven_integrator.hpp"
 #include "mimpact/plugins/lzb_impact_problem.hpp"
 
@@ -9,6 +10,7 @@ namespace mimpact::plugins {
 
 void register_plugins() {
   kernel::integrators().add("event-driven", EventDrivenIntegrator::create);
+  kernel::integrators().add("compliant", CompliantIntegrator::create);
   kernel::impact_problems().add("lzb", LzbImpactProblem::create);
   kernel::contact_force_problems().add("acceleration-lcp", AccelerationLcpProblem::create);
 }

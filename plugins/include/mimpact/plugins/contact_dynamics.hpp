@@ -33,6 +33,8 @@ class ContactDynamics {
   const VectorXd& solve(const VectorXd& rhs);
   // q'' = M^-1 (F + W_S lambda).
   void acceleration(const VectorXd& lambda, VectorXd& out) const;
+  // x := M^-1 x, block by block (the masses as factorized by the last evaluate()).
+  void apply_inverse_mass(VectorXd& x) const;
   // M^-1 W_S, n_dof x |S|
   const Eigen::SparseMatrix<double>& mobility() const { return mobility_; }
 

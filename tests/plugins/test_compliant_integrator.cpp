@@ -1,0 +1,105 @@
+// The compliant integrator against closed forms: a two-body Hertz (and linear) collision's
+// duration and peak force, u+ = -e u- of the hysteretic law, and an independent time-domain
+// Hertz chain.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "../support/hertz_chain_reference.hpp"
+#include "mimpact/kernel/lagrangian_linear_tids.hpp"
+#include "mimpact/kernel/linear_relation.hpp"
+#include "mimpact/kernel/simulation.hpp"
+#include "mimpact/plugins/acceleration_lcp_problem.hpp"
+#include "mimpact/plugins/compliant_integrator.hpp"
+#include "mimpact/plugins/lzb_impact_problem.hpp"
+#include "mimpact/numerics/error.hpp"
+#include "mimpact/plugins/lzb_law.hpp"
+
+namespace mimpact::plugins {
+namespace {
+
+using kernel::Index;
+
+struct Collision {
+  double duration = 0.0, peak = 0.0, separation_speed = 0.0;
+};
+
+// Two bodies on a line, the first at `speed` towards the second, touching at t = 0.
+Collision collide(double m1, double m2, double speed, numerics::ContactLaw law) {
+  auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
+  kernel::LagrangianLinearTIDS::Matrices a, b;
+  a.mass = Eigen::MatrixXd::Constant(1, 1, m1);
+  b.mass = Eigen::MatrixXd::Constant(1, 1, m2);
+  auto first = std::make_shared<kernel::LagrangianLinearTIDS>(Eigen::VectorXd::Zero(1),
+                                                              Eigen::VectorXd::Constant(1, speed), a, "a");
+  auto second = std::make_shared<kernel::LagrangianLinearTIDS>(Eigen::VectorXd::Constant(1, 0.02),
+                                                               Eigen::VectorXd::Zero(1), b, "b");
+  system->add(first);
+  system->add(second);
+  system->add(std::make_shared<kernel::Interaction>(
+      first, second, std::make_shared<kernel::LinearRelation>(Eigen::RowVector2d(-1, 1), -0.02),
+      std::make_shared<LzbLaw>(law), "c"));
+  auto integrator = std::make_unique<CompliantIntegrator>();
+  CompliantIntegrator& compliant = *integrator;
+  kernel::Simulation simulation(system, std::move(integrator), std::make_unique<LzbImpactProblem>(),
+                                std::make_unique<AccelerationLcpProblem>());
+  struct Opening : kernel::SimulationObserver {
+    double time = -1.0;
+    void on_event(const kernel::Simulation& s, const kernel::StepReport& step) override {
+      if (!step.detaching.empty() && time < 0.0) {
+        time = step.time;
+        const_cast<kernel::Simulation&>(s).stop();
+      }
+    }
+  } opening;
+  simulation.add_observer(opening);
+  simulation.run(0.0, 1.0);
+  Collision result;
+  result.duration = opening.time;
+  result.peak = compliant.max_forces()[0];
+  result.separation_speed = second->velocity()(0) - first->velocity()(0);
+  return result;
+}
+
+TEST(CompliantIntegrator, TwoBodyCollisionMatchesTheClosedForm) {
+  const double m1 = 0.02, m2 = 0.05, speed = 0.7, reduced = m1 * m2 / (m1 + m2);
+  for (double eta : {1.0, 1.5}) {
+    numerics::ContactLaw law;
+    law.stiffness = eta == 1.0 ? 2e6 : 5e9;
+    law.exponent = eta;
+    const Collision collision = collide(m1, m2, speed, law);
+    const double a = 1.0 + eta;
+    const double compression = std::pow(a * reduced * speed * speed / (2.0 * law.stiffness), 1.0 / a);
+    // T = (2 delta_m / V) B(1/a, 1/2) / a; F_max = K delta_m^eta
+    const double duration = 2.0 * compression / speed * std::tgamma(1.0 / a) *
+                            std::sqrt(std::numbers::pi) / (a * std::tgamma(1.0 / a + 0.5));
+    const double peak = law.stiffness * std::pow(compression, eta);
+    EXPECT_NEAR(collision.duration, duration, 1e-8 * duration) << "eta " << eta;
+    EXPECT_NEAR(collision.peak, peak, 1e-8 * peak) << "eta " << eta;
+    EXPECT_NEAR(collision.separation_speed, speed, 1e-9 * speed) << "eta " << eta;
+  }
+}
+
+// The unloading curve F_M ((delta - delta_r) / (delta_M - delta_r))^eta gives back e^2 of the
+// compression work: two bodies leave at e times their approach speed.
+TEST(CompliantIntegrator, HystereticContactRestoresEnergeticRestitution) {
+  for (double e : {0.3, 0.8}) {
+    numerics::ContactLaw law;
+    law.stiffness = 5e9;
+    law.restitution = e;
+    const Collision collision = collide(0.02, 0.05, 0.7, law);
+    EXPECT_NEAR(collision.separation_speed, e * 0.7, 1e-8) << "e " << e;
+  }
+}
+
+TEST(CompliantIntegrator, MonoStiffnessWithDissipationIsRefused) {
+  numerics::ContactLaw law;
+  law.stiffness = 5e9;
+  law.restitution = 0.5;
+  law.model = numerics::ComplianceModel::mono_stiffness;
+  EXPECT_THROW(collide(0.02, 0.05, 0.7, law), InvalidInput);
+}
+
+}  // namespace
+}  // namespace mimpact::plugins
