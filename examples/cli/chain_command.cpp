@@ -79,30 +79,36 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (!options.is_valid(&why)) throw InvalidInput("--delta-p: " + why);
   const chain::ChainModel model = chain::build_chain_model(scene);
   const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
-  chain::ChainRecorder recorder(model, scene.record);
-  ProgressReporter progress;
-  Observers observers;
-  if (recording && !out_dir.empty()) {
-    recorder.configure(options);
-    observers.add(recorder);
-  }
-  if (!quiet && isatty(STDERR_FILENO)) {
-    if (observers.empty()) {
-      options.sample_every = 2'000'000;
-      options.sampled_contacts = {0};
-    }
-    observers.add(progress);
-  }
   if (recording && out_dir.empty() && !quiet)
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
-
-  const chain::ChainImpact impact =
-      chain::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
   const bool writes_series = recording && !out_dir.empty();
-  const chain::ChainTimeSeries series =
-      writes_series ? recorder.series(impact) : chain::ChainTimeSeries{};
-  const nlohmann::ordered_json summary =
+  chain::ChainImpact impact;
+  chain::ChainTimeSeries series;
+  if (scene.method == chain::Method::compliant) {
+    chain::CompliantChainRun run = chain::simulate_chain_compliant(model, scene.compliant, scene.record);
+    impact = std::move(run.impact);
+    series = std::move(run.series);
+  } else {
+    chain::ChainRecorder recorder(model, scene.record);
+    ProgressReporter progress;
+    Observers observers;
+    if (writes_series) {
+      recorder.configure(options);
+      observers.add(recorder);
+    }
+    if (!quiet && isatty(STDERR_FILENO)) {
+      if (observers.empty()) {
+        options.sample_every = 2'000'000;
+        options.sampled_contacts = {0};
+      }
+      observers.add(progress);
+    }
+    impact = chain::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
+    if (writes_series) series = recorder.series(impact);
+  }
+  nlohmann::ordered_json summary =
       chain::chain_summary(model, impact, *delta_p, writes_series ? &series : nullptr);
+  summary["method"] = scene.method == chain::Method::compliant ? "compliant" : "lzb";
 
   if (!quiet)
     std::cerr << scene_file << ": " << chain::chain_report(model, impact, *delta_p);

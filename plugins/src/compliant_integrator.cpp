@@ -246,6 +246,9 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
         if (!kind) continue;
         const numerics::Bracket bracket =
             numerics::narrow_crossing(f, lower, upper, f_lower, f_upper, options_.event_tolerance);
+        // an event at the start of the segment is the one just handled, seen again through
+        // round-off of the restarted state
+        if (bracket.upper <= a + options_.event_tolerance) continue;
         if (bracket.upper < event_time) {
           event_time = bracket.upper;
           event_contact = j;

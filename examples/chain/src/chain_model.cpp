@@ -81,6 +81,20 @@ ChainModel build_chain_model(const ChainScene& scene) {
     gradients.emplace_back(n - 1, n - 1, -1.0);
     add_law(hertz_stiffness_wall(bodies[n - 1].radius, bodies[n - 1].material, scene.wall->material));
   }
+  model.first_bead = first_bead;
+  if (scene.precompression > 0.0) {
+    // every contact of the beads carries F_0: overlap (F_0 / K)^(1/eta), from the wall back
+    model.precompression = scene.precompression;
+    const double eta = scene.contact.exponent;
+    auto overlap = [&](std::size_t contact) {
+      return std::pow(scene.precompression / model.laws[contact].stiffness, 1.0 / eta);
+    };
+    const Eigen::Index last = n - 1;
+    model.position(last) = model.wall_position - model.radius(last) + overlap(model.laws.size() - 1);
+    for (Eigen::Index i = last - 1; i >= first_bead; --i)
+      model.position(i) = model.position(i + 1) - model.radius(i) - model.radius(i + 1) + overlap(std::size_t(i));
+    if (left) model.position(0) = model.position(1) - model.radius(0) - model.radius(1) - left->gap;
+  }
   model.W.resize(n, Eigen::Index(model.laws.size()));
   model.W.setFromTriplets(gradients.begin(), gradients.end());
   model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
@@ -94,6 +108,8 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const Chain
   for (Eigen::Index i = 0; i < model.body_count(); ++i) {
     kernel::LagrangianLinearTIDS::Matrices matrices;
     matrices.mass = Eigen::MatrixXd::Constant(1, 1, model.mass(i));
+    if (model.precompression > 0.0 && i == model.first_bead)
+      matrices.external_force = Eigen::VectorXd::Constant(1, model.precompression);
     bodies.push_back(std::make_shared<kernel::LagrangianLinearTIDS>(
         Eigen::VectorXd::Constant(1, model.position(i)),
         Eigen::VectorXd::Constant(1, model.velocity(i)), matrices, "body " + std::to_string(i)));

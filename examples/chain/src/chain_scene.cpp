@@ -187,7 +187,8 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
     throw InvalidInput(source + ": malformed JSON: " + error.what());
   }
   ObjectReader scene(document, "", source);
-  scene.allow_only({"material", "chain", "strikers", "wall", "contact", "impact", "record"});
+  scene.allow_only({"material", "chain", "strikers", "wall", "contact", "impact", "record",
+                    "method", "compliant", "precompression"});
   ChainScene result;
   std::optional<Material> fallback;
   if (scene.has("material")) fallback = read_material(scene, "material", source);
@@ -228,12 +229,39 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
   }
   if (scene.has("record")) {
     ObjectReader record(scene.at("record"), "record", source);
-    record.allow_only({"contacts", "bodies", "every"});
+    record.allow_only({"contacts", "bodies", "every", "interval"});
     result.record.contacts = read_indices(record, "contacts", result.contact_count(), "contact");
     result.record.bodies = read_indices(record, "bodies", result.body_count(), "body");
     result.record.every = int(record.number_or(
         "every", 1, [](double x) { return x >= 1 && x == std::floor(x) && x < 2e9; },
         "an integer >= 1 (impulse steps)"));
+    result.record.interval = record.number_or("interval", result.record.interval, positive, "> 0 (s)");
+  }
+  if (scene.has("method")) {
+    const std::string method = scene.text("method");
+    if (method == "lzb") {
+      result.method = Method::lzb;
+    } else if (method == "compliant") {
+      result.method = Method::compliant;
+    } else {
+      scene.fail("method = \"" + method + "\" is invalid; allowed: \"lzb\", \"compliant\"");
+    }
+  }
+  if (scene.has("compliant")) {
+    ObjectReader compliant(scene.at("compliant"), "compliant", source);
+    compliant.allow_only({"tolerance", "end_time"});
+    result.compliant.tolerance = compliant.number_or(
+        "tolerance", result.compliant.tolerance, [](double x) { return x > 0.0 && x < 1.0; }, "in (0, 1)");
+    if (compliant.has("end_time")) result.compliant.end_time = compliant.number("end_time", positive, "> 0 (s)");
+  }
+  result.precompression = scene.number_or("precompression", 0.0, [](double x) { return x >= 0.0; }, ">= 0 (N)");
+  if (result.precompression > 0.0) {
+    if (result.method != Method::compliant)
+      scene.fail("precompression = " + to_text(result.precompression) +
+                 " N needs method \"compliant\": the LZB impact starts from beads that barely touch");
+    if (!result.wall) scene.fail("precompression needs a wall for the chain to be pressed against");
+    if (!result.compliant.end_time)
+      scene.fail("missing field compliant.end_time: a precompressed chain never comes apart, so the run needs an end");
   }
   return result;
 }

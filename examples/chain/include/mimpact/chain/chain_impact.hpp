@@ -38,6 +38,13 @@ ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
 
 struct ChainTimeSeries;
 
+// The impact computed with the compliant contacts integrated in time (method "compliant"):
+// the same outcome fields (impulses, peaks and their times from the first contact; steps
+// are the integration's), and the recorded time series, sampled every record.interval.
+struct CompliantChainRun;
+CompliantChainRun simulate_chain_compliant(const ChainModel& model, const CompliantSpec& spec,
+                                           const RecordSpec& record);
+
 // The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
 // time and impulse, step count, duration, kinetic energy and momentum before and after.
 // With recorded time series, also the pulse of each recorded contact (seed 000, eqs. 40-43)

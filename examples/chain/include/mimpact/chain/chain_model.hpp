@@ -22,6 +22,9 @@ struct ChainModel {
   Eigen::VectorXd velocity;       // pre-impact velocity (m/s, > 0 to the right), per body
   bool has_wall = false;
   double wall_position = 0.0;     // m, of the wall's plane
+  // N on the first bead towards the wall; the beads start at their static overlaps
+  double precompression = 0.0;
+  Eigen::Index first_bead = 0;
   // when each striker touches its end bead (s): gap / speed, one per striker
   std::vector<double> striker_arrivals;
   Eigen::SparseMatrix<double> W;  // bodies x contacts, column i = grad g_i

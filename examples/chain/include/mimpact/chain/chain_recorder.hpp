@@ -21,6 +21,11 @@ struct ChainTimeSeries {
   std::string velocities_csv() const;
 };
 
+struct CompliantChainRun {
+  ChainImpact impact;
+  ChainTimeSeries series;
+};
+
 // Samples the impulse steps of a chain's impacts (pass it as the impact observer, with the
 // sampling it asks for) and gives the time series of RecordSpec once the run is over.
 class ChainRecorder : public numerics::ImpactObserver {

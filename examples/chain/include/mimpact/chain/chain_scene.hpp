@@ -40,7 +40,17 @@ struct WallSpec {
 struct RecordSpec {
   std::vector<int> contacts;
   std::vector<int> bodies;
-  int every = 1;
+  int every = 1;          // LZB: one sample every this many impulse steps
+  double interval = 1e-7; // compliant: one sample every this long (s)
+};
+
+// How the impact is computed: the LZB impulse dynamics (the default) or the compliant contacts
+// integrated in time (its reference for e = 1; the only one for a precompressed chain).
+enum class Method { lzb, compliant };
+
+struct CompliantSpec {
+  double tolerance = 1e-10;  // relative error control of the integration
+  std::optional<double> end_time;  // s; required with a precompression
 };
 
 struct ContactSpec {
@@ -61,6 +71,10 @@ struct ChainScene {
   ContactSpec contact;
   std::optional<double> delta_p;  // N s, from "impact": {"delta_p"}
   RecordSpec record;
+  Method method = Method::lzb;
+  CompliantSpec compliant;
+  // N: a constant force on the first bead pushes the chain against its wall (compliant only)
+  double precompression = 0.0;
 
   int bead_count() const;
   int body_count() const { return bead_count() + int(strikers.size()); }
