@@ -8,6 +8,7 @@
 
 #include "../support/chain_runs.hpp"
 #include "../support/hertz_chain_reference.hpp"
+#include "mimpact/chain/chain_recorder.hpp"
 
 namespace mimpact::testing {
 namespace {
@@ -150,6 +151,31 @@ TEST(Convergence, ElasticChainsConvergeToTheExactHertzChain) {
     // measured: 1.05e-4 (C1) and 5.8e-4 (C2) at delta_p = 1e-6
     EXPECT_LE(errors.back(), std::string(scene) == "c1.json" ? 2e-4 : 1e-3) << scene;
     EXPECT_GT(errors.front() / errors.back(), 5.0) << scene;
+  }
+}
+
+// Issue 5: for e = 1 the LZB post-impact velocities converge to the compliant reference
+// (the same contacts integrated in time) at first order in delta_p.
+TEST(Convergence, LzbConvergesToTheCompliantReferenceAtFirstOrder) {
+  for (const char* scene_name : {"c1.json", "c2.json"}) {
+    chain::ChainScene scene =
+        chain::load_chain_scene(std::string(MIMPACT_SOURCE_DIR) + "/examples/scenes/" + scene_name);
+    const chain::ChainModel model = chain::build_chain_model(scene);
+    scene.compliant.tolerance = 1e-12;
+    const chain::CompliantChainRun reference =
+        chain::simulate_chain_compliant(model, scene.compliant, scene.record);
+    std::vector<double> x, y;
+    for (double delta_p : {1e-4, 1e-5, 1e-6}) {
+      const double error =
+          relative_difference(run_chain(model, delta_p).velocity_after, reference.impact.velocity_after);
+      x.push_back(std::log(delta_p));
+      y.push_back(std::log(error));
+      std::printf("%s delta_p = %g: ||v+_LZB - v+_compliant|| / ||v+_compliant|| = %.3g\n", scene_name,
+                  delta_p, error);
+    }
+    const double slope = ((x[2] - x[0]) * (y[2] - y[0])) / ((x[2] - x[0]) * (x[2] - x[0]));
+    EXPECT_GE(slope, 0.8) << scene_name;
+    EXPECT_LE(slope, 1.2) << scene_name;
   }
 }
 
