@@ -8,6 +8,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "convergence_report.hpp"
 #include "mimpact/chain/chain_impact.hpp"
 #include "mimpact/chain/chain_recorder.hpp"
 #include "mimpact/numerics/error.hpp"
@@ -57,27 +58,43 @@ class Observers : public numerics::ImpactObserver {
 int chain_command(const std::vector<std::string>& arguments) {
   std::string scene_file, out_dir;
   std::optional<double> delta_p_option;
+  std::vector<double> tolerance;
   po::options_description visible(
       "mimpact chain SCENE.json: the multiple impact of a granular chain");
   visible.add_options()(
       "out", po::value(&out_dir), "write summary.json into this directory instead of stdout")(
       "delta-p", po::value<double>(), "principal impulse step (N s); overrides impact.delta_p")(
+      "tolerance", po::value(&tolerance)->multitoken(),
+      "eps+ [eps]: choose delta_p by halving it from --delta-p (or the scene's, or 1e-3 of the "
+      "striker's m V) until the post-impact velocities (and the velocities along the impact) "
+      "change by at most eps+ (eps) relative; see `mimpact converge`")(
       "quiet", "no progress or report on stderr");
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
 
   const chain::ChainScene scene = chain::load_chain_scene(scene_file);
+  const chain::ChainModel model = chain::build_chain_model(scene);
   if (values.count("delta-p")) delta_p_option = values["delta-p"].as<double>();
-  const std::optional<double> delta_p = delta_p_option ? delta_p_option : scene.delta_p;
+  std::optional<double> delta_p = delta_p_option ? delta_p_option : scene.delta_p;
+  std::optional<numerics::ConvergenceStudy> study;
+  if (!tolerance.empty()) {
+    if (scene.method != chain::Method::lzb)
+      throw InvalidInput("--tolerance chooses delta_p for the LZB method; " + scene_file +
+                         " has method \"compliant\"");
+    study = numerics::study_convergence(chain::impact_problem(model),
+                                        convergence_options(scene, model, delta_p_option, tolerance, 12));
+    if (!study->converged)
+      throw Error(scene_file + ": no delta_p down to " + std::to_string(study->rows.back().delta_p) +
+                  " N s met --tolerance; loosen it or start smaller; no output written");
+    delta_p = study->rows.back().delta_p;
+  }
   if (!delta_p)
-    throw InvalidInput(scene_file + ": missing field impact.delta_p (or give --delta-p)");
+    throw InvalidInput(scene_file + ": missing field impact.delta_p (or give --delta-p or --tolerance)");
 
-  numerics::LzbOptions options;
-  options.delta_p = *delta_p;
+  numerics::LzbOptions options = scene.lzb_options(*delta_p);
   std::string why;
   if (!options.is_valid(&why)) throw InvalidInput("--delta-p: " + why);
-  const chain::ChainModel model = chain::build_chain_model(scene);
   const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
   if (recording && out_dir.empty() && !quiet)
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
@@ -109,6 +126,7 @@ int chain_command(const std::vector<std::string>& arguments) {
   nlohmann::ordered_json summary =
       chain::chain_summary(model, impact, *delta_p, writes_series ? &series : nullptr);
   summary["method"] = scene.method == chain::Method::compliant ? "compliant" : "lzb";
+  if (study) summary["convergence"] = convergence_json(*study);
 
   if (!quiet)
     std::cerr << scene_file << ": " << chain::chain_report(model, impact, *delta_p);

@@ -1,7 +1,8 @@
 // mimpact: the command line of the library.
-//   mimpact chain SCENE.json [--out DIR] [--delta-p X] [--quiet]
+//   mimpact chain SCENE.json [--out DIR] [--delta-p X | --tolerance eps+ [eps]] [--quiet]
 //   mimpact lcp FILE [--max-pivots N]
 //   mimpact nesterenko F1,F2,... [options]
+//   mimpact converge SCENE.json [--from h] [--tolerance eps+ [eps]] [--json]
 #include <boost/program_options/errors.hpp>
 #include <iostream>
 #include <string>
@@ -15,10 +16,12 @@ namespace {
 constexpr const char* kUsage =
     "usage: mimpact COMMAND [ARGS]\n"
     "commands:\n"
-    "  chain SCENE.json [--out DIR] [--delta-p X] [--quiet]\n"
+    "  chain SCENE.json [--out DIR] [--delta-p X] [--tolerance eps+ [eps]] [--quiet]\n"
     "      the multiple impact of a granular chain; prints summary.json or writes it to DIR\n"
     "  lcp FILE [--max-pivots N]\n"
     "      solves the LCP of FILE (Siconos test format) with Lemke's method; prints JSON\n"
+    "  converge SCENE.json [--from h] [--tolerance eps+ [eps]] [--json]\n"
+    "      delta_p = h, h/2, ... until the impact converges (seed 000, appendix A.2)\n"
     "  nesterenko F1,F2,... [--radius a] [--static-force F0] [--site beads|sensor] ...\n"
     "      speed and width of Nesterenko's solitary waves (seed 001) for these peak forces\n"
     "run 'mimpact COMMAND --help' for the options of a command\n";
@@ -36,11 +39,12 @@ int main(int argc, char** argv) {
     if (command == "chain") return mimpact::cli::chain_command(arguments);
     if (command == "lcp") return mimpact::cli::lcp_command(arguments);
     if (command == "nesterenko") return mimpact::cli::nesterenko_command(arguments);
+    if (command == "converge") return mimpact::cli::converge_command(arguments);
     if (command == "--help" || command == "-h" || command == "help") {
       std::cout << kUsage;
       return 0;
     }
-    std::cerr << "mimpact: unknown command \"" << command << "\"; allowed: chain, lcp, nesterenko\n"
+    std::cerr << "mimpact: unknown command \"" << command << "\"; allowed: chain, converge, lcp, nesterenko\n"
               << kUsage;
     return 2;
   } catch (const boost::program_options::error& error) {

@@ -14,6 +14,17 @@ std::string_view to_string(LzbStatus status) {
   return status == LzbStatus::terminated ? "terminated" : "step_limit";
 }
 
+double LzbOptions::velocity_tolerance(double h_jj) const {
+  return fixed_thresholds ? fixed_thresholds->velocity
+                          : termination_velocity_factor * h_jj * delta_p;
+}
+
+double LzbOptions::energy_tolerance(double h_jj) const {
+  if (fixed_thresholds) return fixed_thresholds->energy;
+  const double velocity = velocity_tolerance(h_jj);
+  return velocity * velocity / (2.0 * h_jj);
+}
+
 bool LzbOptions::is_valid(std::string* why) const {
   auto fail = [why](const std::string& text) {
     if (why) *why = text;
@@ -24,6 +35,15 @@ bool LzbOptions::is_valid(std::string* why) const {
   if (!(termination_velocity_factor > 0.0 && std::isfinite(termination_velocity_factor)))
     return fail(invalid_value_message("termination_velocity_factor",
                                       termination_velocity_factor, "a finite value > 0"));
+  if (fixed_thresholds) {
+    const FixedThresholds& fixed = *fixed_thresholds;
+    if (!(fixed.velocity > 0.0 && std::isfinite(fixed.velocity)))
+      return fail(invalid_value_message("fixed_thresholds.velocity", fixed.velocity,
+                                        "a finite value > 0 (m/s)"));
+    if (!(fixed.energy > 0.0 && std::isfinite(fixed.energy)))
+      return fail(invalid_value_message("fixed_thresholds.energy", fixed.energy,
+                                        "a finite value > 0 (J)"));
+  }
   if (max_steps <= 0)
     return fail(invalid_value_message("max_steps", double(max_steps), "an integer > 0"));
   if (sample_every < 0)
@@ -245,8 +265,8 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal,
     restitution_[j] = law.restitution;
     inverse_e2_[j] = law.restitution > 0.0 ? 1.0 / (law.restitution * law.restitution) : 0.0;
     mono_stiffness_[j] = law.model == ComplianceModel::mono_stiffness;
-    tolerance_u_[j] = options_.termination_velocity_factor * diagonal(Index(j)) * options_.delta_p;
-    tolerance_energy_[j] = tolerance_u_[j] * tolerance_u_[j] / (2.0 * diagonal(Index(j)));
+    tolerance_u_[j] = options_.velocity_tolerance(diagonal(Index(j)));
+    tolerance_energy_[j] = options_.energy_tolerance(diagonal(Index(j)));
   }
 
   u_.assign(u_minus.data(), u_minus.data() + m);
@@ -277,7 +297,8 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal,
   sample_impulse_.assign(sampled_.size(), 0.0);
 }
 
-void LzbImpulseIntegrator::notify(ImpactObserver* observer, std::int64_t step, double time) {
+void LzbImpulseIntegrator::notify(ImpactObserver* observer, std::int64_t step, double time,
+                                  double principal) {
   for (std::size_t k = 0; k < sampled_.size(); ++k) {
     const Index j = sampled_[k];
     sample_u_[k] = u_[j];
@@ -288,7 +309,7 @@ void LzbImpulseIntegrator::notify(ImpactObserver* observer, std::int64_t step, d
   ImpactSample sample;
   sample.step = step;
   sample.time = time;
-  sample.principal_impulse = double(step) * options_.delta_p;
+  sample.principal_impulse = principal;
   sample.contacts = sampled_;
   sample.velocity = sample_u_;
   sample.energy = sample_energy_;
@@ -326,9 +347,9 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   std::size_t active_count = initially_active_;
 
   std::int64_t step = 0;
-  double time = 0.0;
+  double time = 0.0, principal = 0.0;
   LzbResult result;
-  if (observer) notify(observer, step, time);
+  if (observer) notify(observer, step, time, principal);
 
   while (true) {
     // 1. states. A contact takes part while E_j > tol_E_j or u_j < -tol_u_j: below both it
@@ -463,11 +484,12 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
 
     time += primary_step_duration(step_impulse[primary], primary_energy_start, primary_energy_end,
                                   primary_force, coefficient[primary], power[primary]);
+    principal += step_impulse[primary];
     ++step;
     if (observer && options_.sample_every > 0 && step % options_.sample_every == 0)
-      notify(observer, step, time);
+      notify(observer, step, time, principal);
   }
-  if (observer) notify(observer, step, time);
+  if (observer) notify(observer, step, time, principal);
 
   const Index m = Index(laws.size());
   result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse, m);

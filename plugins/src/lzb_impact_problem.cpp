@@ -79,9 +79,9 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   report.impulse = last_.impulse;
   report.max_force = last_.max_force;
   report.time_of_max_force = last_.time_of_max_force;
-  // the integrator's termination tolerance: H_jj delta_p times the factor
-  report.velocity_resolution = options_.integrator.termination_velocity_factor *
-                               integrator_.options().delta_p * delassus.H().diagonal();
+  // the integrator's termination tolerance tol_u_j
+  report.velocity_resolution = delassus.H().diagonal().unaryExpr(
+      [&](double h_jj) { return integrator_.options().velocity_tolerance(h_jj); });
   report.steps = last_.steps;
   report.duration = last_.duration;
   report.wall_time =

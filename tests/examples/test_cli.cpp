@@ -1,4 +1,4 @@
-// The command line contract: `mimpact chain` and `mimpact lcp` outputs, errors and exit codes.
+// The command line contract: `mimpact chain`, `converge` and `lcp` outputs, errors and exit codes.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -127,7 +127,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"taper", "\"taper\": 0.1", "\"taper\": 1", "chain.segments[0].taper = 1 is invalid"},
         BadScene{"zero_beads", "\"count\": 5", "\"count\": 0", "chain.segments[0].count = 0 is invalid"},
         BadScene{"away", "\"velocity\": 1", "\"velocity\": -1",
-                 "strikers[0].velocity = -1 is invalid; allowed: > 0 (m/s, towards the chain)"}),
+                 "strikers[0].velocity = -1 is invalid; allowed: > 0 (m/s, towards the chain)"},
+        BadScene{"threshold", "\"delta_p\": 1e-5", "\"delta_p\": 1e-5, \"fixed_thresholds\": {\"velocity\": 0, \"energy\": 1e-8}",
+                 "impact.fixed_thresholds.velocity = 0 is invalid; allowed: > 0 (m/s)"}),
     [](const auto& param_info) { return std::string(param_info.param.name); });
 
 TEST(ChainCommand, RecordWritesTimeSeriesThatAgreeWithTheSummary) {
@@ -182,6 +184,52 @@ TEST(ChainCommand, BadDeltaPIsNamed) {
   const CliRun run = mimpact("chain " + scene("c1.json") + " --delta-p -1");
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("delta_p = -1 is invalid"), std::string::npos) << run.err;
+}
+
+// The table of seed 000's tables 2-4 as JSON; C2 from 1e-5 converges at the first halving
+// below the seed's 1e-6 (its table 3: not converged at 1e-5, converged at 1e-6).
+TEST(ConvergeCommand, PrintsTheRowsAndStopsWhereTheCriteriaHold) {
+  const CliRun run = mimpact("converge " + scene("c2.json") + " --from 1e-5 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto study = nlohmann::json::parse(run.out);
+  const auto& rows = study["rows"];
+  ASSERT_EQ(rows.size(), 4u);  // 1e-5, 5e-6, 2.5e-6, 1.25e-6
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_DOUBLE_EQ(rows[k]["delta_p"].get<double>(), 1e-5 / double(1 << k));
+    EXPECT_EQ(rows[k]["converged"].get<bool>(), k + 1 == rows.size());
+    EXPECT_GT(rows[k]["impulse_steps"].get<double>(), 22000.0 * double(1 << k));
+    EXPECT_GE(rows[k]["wall_time"].get<double>(), 0.0);
+    EXPECT_GT(rows[k]["max_eta"].get<double>(), rows[k]["eta_plus"].get<double>());
+  }
+  EXPECT_LE(rows[3]["max_eta"].get<double>(), 0.01);
+  EXPECT_EQ(study["extrapolated_velocities"].size(), 21u);
+  EXPECT_TRUE(study["converged"].get<bool>());
+}
+
+TEST(ConvergeCommand, ExitsWith4WhenNotConvergedWithinTheHalvings) {
+  const CliRun run = mimpact("converge " + scene("c1.json") + " --from 1e-4 --halvings 2");
+  EXPECT_EQ(run.exit_code, 4) << run.err;
+  EXPECT_NE(run.out.find("not converged within the halvings"), std::string::npos) << run.out;
+}
+
+// --tolerance runs the study and the chain at the delta_p it chose: C1 from 1e-4 at
+// eps+ = 1e-3 only (eps = 1) needs eta+_h <= 1e-3, met at 2.5e-5 (eta+ 0.00096).
+TEST(ChainCommand, ToleranceChoosesDeltaP) {
+  const CliRun run = mimpact("chain " + scene("c1.json") + " --delta-p 1e-4 --tolerance 1e-3 1 --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto summary = nlohmann::json::parse(run.out);
+  EXPECT_DOUBLE_EQ(summary["delta_p"].get<double>(), 2.5e-5);
+  const auto& rows = summary["convergence"]["rows"];
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_LE(rows[2]["eta_plus"].get<double>(), 1e-3);
+  EXPECT_GT(rows[1]["eta_plus"].get<double>(), 1e-3);
+  EXPECT_NEAR(summary["impulse_steps"].get<double>(), rows[2]["impulse_steps"].get<double>(), 2.0);
+}
+
+TEST(ChainCommand, BadToleranceIsNamed) {
+  const CliRun run = mimpact("chain " + scene("c1.json") + " --tolerance -0.1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("tolerance eps+ = -0.1 is invalid"), std::string::npos) << run.err;
 }
 
 TEST(LcpCommand, PrintsStatusPivotsErrorAndZ) {

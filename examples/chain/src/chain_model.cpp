@@ -1,10 +1,12 @@
 #include "mimpact/chain/chain_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/numerics/delassus.hpp"
+#include "mimpact/numerics/error.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
 
 namespace mimpact::chain {
@@ -131,6 +133,27 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const Chain
         bodies[n - 1], relation, std::make_shared<plugins::LzbLaw>(model.laws.back()), "wall"));
   }
   return system;
+}
+
+numerics::ImpactProblemData impact_problem(const ChainModel& model) {
+  for (double arrival : model.striker_arrivals)
+    if (arrival > 0.0)
+      throw InvalidInput("the convergence study needs the strikers touching the chain (one impact); "
+                         "a striker has a gap");
+  numerics::ImpactProblemData problem;
+  problem.H = model.H;
+  problem.u_minus = model.u_minus;
+  problem.laws = model.laws;
+  problem.mobility = model.mass.cwiseInverse().asDiagonal() * model.W;
+  problem.velocity_before = model.velocity;
+  return problem;
+}
+
+double natural_impulse(const ChainModel& model) {
+  double smallest = INFINITY;
+  for (Eigen::Index i = 0; i < model.body_count(); ++i)
+    if (model.velocity(i) != 0.0) smallest = std::min(smallest, model.mass(i) * std::abs(model.velocity(i)));
+  return smallest;
 }
 
 double contact_position(const ChainModel& model, Eigen::Index contact) {

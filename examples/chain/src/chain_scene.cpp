@@ -224,8 +224,14 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
   result.contact = read_contact(scene, source);
   if (scene.has("impact")) {
     ObjectReader impact(scene.at("impact"), "impact", source);
-    impact.allow_only({"delta_p"});
-    result.delta_p = impact.number("delta_p", positive, "> 0 (N s)");
+    impact.allow_only({"delta_p", "fixed_thresholds"});
+    if (impact.has("delta_p")) result.delta_p = impact.number("delta_p", positive, "> 0 (N s)");
+    if (impact.has("fixed_thresholds")) {
+      ObjectReader fixed(impact.at("fixed_thresholds"), "impact.fixed_thresholds", source);
+      fixed.allow_only({"velocity", "energy"});
+      result.fixed_thresholds = numerics::LzbOptions::FixedThresholds{
+          fixed.number("velocity", positive, "> 0 (m/s)"), fixed.number("energy", positive, "> 0 (J)")};
+    }
   }
   if (scene.has("record")) {
     ObjectReader record(scene.at("record"), "record", source);
@@ -276,6 +282,13 @@ const StrikerSpec* ChainScene::striker(Side side) const {
   for (const StrikerSpec& striker : strikers)
     if (striker.side == side) return &striker;
   return nullptr;
+}
+
+numerics::LzbOptions ChainScene::lzb_options(double step) const {
+  numerics::LzbOptions options;
+  options.delta_p = step;
+  options.fixed_thresholds = fixed_thresholds;
+  return options;
 }
 
 ChainScene load_chain_scene(const std::filesystem::path& path) {

@@ -12,7 +12,9 @@ namespace mimpact::numerics {
 struct ImpactSample {
   std::int64_t step = 0;           // impulse steps taken so far
   double time = 0.0;               // s since the impact began
-  double principal_impulse = 0.0;  // the independent variable, step * delta_p (N s)
+  // the independent variable P: the primary contacts' impulse steps summed (N s); each is
+  // delta_p but the last of a primary's phase, which ends where the phase does
+  double principal_impulse = 0.0;
   std::span<const Eigen::Index> contacts;  // which contacts the arrays describe
   std::span<const double> velocity;        // relative normal velocity u (m/s, < 0 approaching)
   std::span<const double> energy;          // potential energy E (J)

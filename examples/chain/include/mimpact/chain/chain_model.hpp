@@ -8,6 +8,7 @@
 #include "mimpact/chain/chain_scene.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/lzb_convergence.hpp"
 
 namespace mimpact::chain {
 
@@ -41,6 +42,15 @@ ChainModel build_chain_model(const ChainScene& scene);
 // The chain in the kernel's terms: one LagrangianLinearTIDS per body (no force), one
 // interaction per contact with a LinearRelation and an LzbLaw.
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const ChainModel& model);
+
+// The chain's one impact for the convergence study of seed 000 (appendix A.2): H, u-, the
+// laws, M^-1 W and v-. Throws InvalidInput when a striker starts away from the chain (more
+// than one impact).
+numerics::ImpactProblemData impact_problem(const ChainModel& model);
+
+// The impulse that sets the impact's scale (N s): the smallest momentum m |v| of a moving
+// body, i.e. of a striker. delta_p is best chosen as a share of it.
+double natural_impulse(const ChainModel& model);
 
 // Where contact j touches at t = 0 (m), from the centre of the first body: x_j + R_j, or
 // the wall's plane for the wall's contact.

@@ -8,6 +8,7 @@
 
 #include "mimpact/chain/hertz.hpp"
 #include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::chain {
 
@@ -70,6 +71,8 @@ struct ChainScene {
   std::optional<WallSpec> wall;
   ContactSpec contact;
   std::optional<double> delta_p;  // N s, from "impact": {"delta_p"}
+  // from "impact": {"fixed_thresholds": {"velocity", "energy"}}; absent: scaled with delta_p
+  std::optional<numerics::LzbOptions::FixedThresholds> fixed_thresholds;
   RecordSpec record;
   Method method = Method::lzb;
   CompliantSpec compliant;
@@ -80,6 +83,8 @@ struct ChainScene {
   int body_count() const { return bead_count() + int(strikers.size()); }
   int contact_count() const { return body_count() - 1 + (wall ? 1 : 0); }
   const StrikerSpec* striker(Side side) const;
+  // The LZB integrator's options for this scene at delta_p = step (N s)
+  numerics::LzbOptions lzb_options(double step) const;
 };
 
 // Parses and validates a scene (JSON, comments allowed). Throws InvalidInput naming the

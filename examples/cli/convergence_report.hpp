@@ -1,0 +1,30 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mimpact/chain/chain_model.hpp"
+#include "mimpact/chain/chain_scene.hpp"
+#include "mimpact/numerics/lzb_convergence.hpp"
+
+namespace mimpact::cli {
+
+// The study that `converge` runs and `chain --tolerance` uses to choose delta_p. The first
+// delta_p is `first` when given, else the scene's, else 1e-3 of the natural impulse m V;
+// `tolerance` holds eps+ and optionally eps (default 0.01 each, eps = eps+ when one is given).
+numerics::ConvergenceOptions convergence_options(const chain::ChainScene& scene,
+                                                 const chain::ChainModel& model,
+                                                 std::optional<double> first,
+                                                 const std::vector<double>& tolerance,
+                                                 int max_halvings);
+
+// {"rows": [{"delta_p", "impulse_steps", "wall_time", "max_eta", "eta_plus", "converged"}],
+//  "extrapolated_velocities": [...], "converged"}
+nlohmann::ordered_json convergence_json(const numerics::ConvergenceStudy& study);
+
+// The table of the seed's tables 2-4 and the extrapolated velocities, to stdout.
+void print_convergence_table(const numerics::ConvergenceStudy& study);
+
+}  // namespace mimpact::cli
