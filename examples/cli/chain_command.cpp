@@ -89,12 +89,10 @@ int chain_command(const std::vector<std::string>& arguments) {
                   " N s met --tolerance; loosen it or start smaller; no output written");
     delta_p = study->rows.back().delta_p;
   }
-  if (!delta_p)
+  const bool lzb = scene.method == chain::Method::lzb;
+  if (lzb && !delta_p)
     throw InvalidInput(scene_file + ": missing field impact.delta_p (or give --delta-p or --tolerance)");
-
-  numerics::LzbOptions options = scene.lzb_options(*delta_p);
-  std::string why;
-  if (!options.is_valid(&why)) throw InvalidInput("--delta-p: " + why);
+  if (!lzb) delta_p.reset();  // the compliant method has no delta_p
   const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
   if (recording && out_dir.empty() && !quiet)
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
@@ -106,6 +104,9 @@ int chain_command(const std::vector<std::string>& arguments) {
     impact = std::move(run.impact);
     series = std::move(run.series);
   } else {
+    numerics::LzbOptions options = scene.lzb_options(*delta_p);
+    std::string why;
+    if (!options.is_valid(&why)) throw InvalidInput("--delta-p: " + why);
     chain::ChainRecorder recorder(model, scene.record);
     ProgressReporter progress;
     Observers observers;
@@ -124,12 +125,12 @@ int chain_command(const std::vector<std::string>& arguments) {
     if (writes_series) series = recorder.series(impact);
   }
   nlohmann::ordered_json summary =
-      chain::chain_summary(model, impact, *delta_p, writes_series ? &series : nullptr);
+      chain::chain_summary(model, impact, delta_p, writes_series ? &series : nullptr);
   summary["method"] = scene.method == chain::Method::compliant ? "compliant" : "lzb";
   if (study) summary["convergence"] = convergence_json(*study);
 
   if (!quiet)
-    std::cerr << scene_file << ": " << chain::chain_report(model, impact, *delta_p);
+    std::cerr << scene_file << ": " << chain::chain_report(model, impact, delta_p);
   if (impact.lzb.status != numerics::LzbStatus::terminated)
     throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
   if (out_dir.empty()) {

@@ -6,6 +6,7 @@
 
 #include "../support/chain_runs.hpp"
 #include "mimpact/chain/chain_recorder.hpp"
+#include "mimpact/numerics/nesterenko.hpp"
 #include "mimpact/numerics/pulse_analysis.hpp"
 
 namespace mimpact::testing {
@@ -106,6 +107,38 @@ TEST(PaperW, SpeedGoesAsTheForceToTheOneSixth) {
   const double C = std::sqrt(2 * a * a * a / (mass * theta));
   const double constant = std::exp(log_speed[1]) / (C * std::pow(theta * std::exp(log_force[1]) / (a * a), 1.0 / 6.0));
   EXPECT_NEAR(constant, std::sqrt(0.8), 0.02 * std::sqrt(0.8));
+}
+
+// W under a static force (seed 001, figures 9-12), with the compliant contacts: the chain
+// holds F_0 at rest until the wave comes, and the leading wave runs at the speed of eq. 22
+// (Nesterenko's long-wave theory, computed independently) within 1.5 % for F_m / F_0 in the
+// measured range.
+TEST(PaperW, PrecompressedChainsFollowEquation22) {
+  const numerics::BeadChain beads{0.004, 2.26e11, 0.3, 7650};
+  for (const auto [static_force, striker_speed] : {std::pair{9.8, 0.5}, std::pair{167.0, 2.0}}) {
+    chain::ChainScene scene = paper_scene("coste_chain_precompressed.json");
+    scene.precompression = static_force;
+    scene.strikers[0].velocity = striker_speed;
+    const chain::ChainModel model = chain::build_chain_model(scene);
+    const chain::CompliantChainRun run = chain::simulate_chain_compliant(model, scene.compliant, scene.record);
+    const chain::ChainTimeSeries& series = run.series;
+    ASSERT_EQ(series.contacts, (std::vector<int>{16, 26, 36}));
+    // at rest: the contact after bead 36 carries F_0 while the wave is still 20 beads away
+    for (std::size_t r = 0; series.time[r] < 1e-4; ++r)
+      EXPECT_NEAR(series.force[r][2], static_force, 1e-6 * static_force) << series.time[r];
+    const Pulses pulses{chain::chain_summary(model, run.impact, std::nullopt, &series)};
+    auto first = [&](int contact) { return pulses.at(contact)["pulse_train"][0]; };
+    const double distance = pulses.at(36)["position"].get<double>() - pulses.at(16)["position"].get<double>();
+    const double speed = distance / (first(36)["time"].get<double>() - first(16)["time"].get<double>());
+    const double peak = first(26)["force"];  // beyond F_0
+    const numerics::PrecompressedWave theory =
+        numerics::precompressed_solitary_wave(beads, peak, static_force, numerics::ForceSite::between_beads);
+    std::printf("F_0 = %g N: F_m / F_0 = %.3g, V = %.1f m/s, eq. 22: %.1f m/s\n", static_force,
+                peak / static_force, speed, theory.speed);
+    EXPECT_GT(peak / static_force, 0.5);
+    EXPECT_LT(peak / static_force, 40.0);
+    EXPECT_NEAR(speed / theory.speed, 1.0, 0.015) << static_force;
+  }
 }
 
 }  // namespace

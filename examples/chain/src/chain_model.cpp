@@ -91,6 +91,8 @@ ChainModel build_chain_model(const ChainScene& scene) {
     auto overlap = [&](std::size_t contact) {
       return std::pow(scene.precompression / model.laws[contact].stiffness, 1.0 / eta);
     };
+    for (std::size_t contact = std::size_t(first_bead); contact < model.laws.size(); ++contact)
+      model.largest_static_overlap = std::max(model.largest_static_overlap, overlap(contact));
     const Eigen::Index last = n - 1;
     model.position(last) = model.wall_position - model.radius(last) + overlap(model.laws.size() - 1);
     for (Eigen::Index i = last - 1; i >= first_bead; --i)

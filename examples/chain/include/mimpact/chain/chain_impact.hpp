@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,13 +48,14 @@ CompliantChainRun simulate_chain_compliant(const ChainModel& model, const Compli
 
 // The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
 // time and impulse, step count, duration, kinetic energy and momentum before and after.
-// With recorded time series, also the pulse of each recorded contact (seed 000, eqs. 40-43)
+// With recorded time series, also the pulse of each recorded contact (seed 000, eqs. 40-43;
+// in a precompressed chain, of the force beyond the static one)
 // and the wave speed through each bead whose two contacts are recorded (eq. 41). Keys keep
-// the order written here (ordered_json).
+// the order written here (ordered_json). delta_p is absent (null) for the compliant method.
 nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact& impact,
-                                     double delta_p, const ChainTimeSeries* series = nullptr);
+                                     std::optional<double> delta_p, const ChainTimeSeries* series = nullptr);
 
 // A few lines for people: sizes, steps, duration, energy and momentum, post-impact velocities.
-std::string chain_report(const ChainModel& model, const ChainImpact& impact, double delta_p);
+std::string chain_report(const ChainModel& model, const ChainImpact& impact, std::optional<double> delta_p);
 
 }  // namespace mimpact::chain

@@ -25,6 +25,7 @@ struct ChainModel {
   double wall_position = 0.0;     // m, of the wall's plane
   // N on the first bead towards the wall; the beads start at their static overlaps
   double precompression = 0.0;
+  double largest_static_overlap = 0.0;  // m: the compliant contacts start this far in
   Eigen::Index first_bead = 0;
   // when each striker touches its end bead (s): gap / speed, one per striker
   std::vector<double> striker_arrivals;
