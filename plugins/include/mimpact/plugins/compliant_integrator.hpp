@@ -58,7 +58,11 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   void gaps(const double* q, const double* v, std::vector<double>& gap, std::vector<double>& rate);
   double contact_force(std::size_t j, double delta) const;
   void restart();
-  void account_step(double from, double to);
+  // the round-off of each gap at the start of a segment
+  void estimate_gap_noise();
+  // at the end of a segment: every contact's force and the largest so far; an open contact
+  // loses its unloading history
+  void account_segment_end();
 
   CompliantOptions options_;
   kernel::NonSmoothDynamicalSystem* system_ = nullptr;
