@@ -53,6 +53,17 @@ class Observers : public numerics::ImpactObserver {
   std::vector<numerics::ImpactObserver*> observers_;
 };
 
+// LZB's relative error is 1 to 13 times delta_p / (m V) on the chains of docs/performance.md:
+// past 1 % of the striker's momentum the outcome is off by percents.
+void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
+  const double share = delta_p / natural_impulse;
+  if (quiet || !(share > 1e-2)) return;
+  std::fprintf(stderr,
+               "mimpact chain: warning: delta_p = %g N s is %.3g of the striker's momentum m V = %g N s; "
+               "the outcome may be off by %.0f %% or more; take delta_p <= 1e-3 m V or use --tolerance\n",
+               delta_p, share, natural_impulse, 100.0 * share);
+}
+
 }  // namespace
 
 int chain_command(const std::vector<std::string>& arguments) {
@@ -107,6 +118,7 @@ int chain_command(const std::vector<std::string>& arguments) {
     numerics::LzbOptions options = scene.lzb_options(*delta_p);
     std::string why;
     if (!options.is_valid(&why)) throw InvalidInput("--delta-p: " + why);
+    warn_if_coarse(*delta_p, chain::natural_impulse(model), quiet);
     chain::ChainRecorder recorder(model, scene.record);
     ProgressReporter progress;
     Observers observers;

@@ -273,6 +273,7 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal,
   u_old_ = u_;
   reset(energy_, 0.0);
   reset(impulse_, 0.0);
+  reset(impulse_carry_, 0.0);
   reset(step_impulse_, 0.0);
   reset(force_, 0.0);
   reset(force_hat_, 0.0);
@@ -336,6 +337,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   double* u_old = u_old_.data();
   double* energy = energy_.data();
   double* impulse = impulse_.data();
+  double* impulse_carry = impulse_carry_.data();
   double* step_impulse = step_impulse_.data();
   double* force = force_.data();
   double* force_hat = force_hat_.data();
@@ -461,7 +463,11 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       const Index j = active[a];
       const double dp = step_impulse[j];
       const double mean_u = 0.5 * (u_old[j] + u[j]);
-      impulse[j] += dp;
+      // compensated (Kahan) sum: a billion steps of delta_p keep P to round-off
+      const double added = dp - impulse_carry[j];
+      const double sum = impulse[j] + added;
+      impulse_carry[j] = (sum - impulse[j]) - added;
+      impulse[j] = sum;
       double e_j = energy[j];
       if (mono[j]) {
         if (u_old[j] < 0.0 && u[j] >= 0.0) {

@@ -226,6 +226,15 @@ TEST(ChainCommand, ToleranceChoosesDeltaP) {
   EXPECT_NEAR(summary["impulse_steps"].get<double>(), rows[2]["impulse_steps"].get<double>(), 2.0);
 }
 
+// A delta_p past 1 % of the striker's momentum gives errors of percents: the run says so.
+TEST(ChainCommand, CoarseDeltaPIsWarnedAbout) {
+  const CliRun run = mimpact("chain " + scene("c1.json") + " --delta-p 1e-3");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("warning: delta_p = 0.001 N s is 0.0307 of the striker's momentum"), std::string::npos)
+      << run.err;
+  EXPECT_EQ(mimpact("chain " + scene("c1.json") + " --delta-p 1e-5").err.find("warning"), std::string::npos);
+}
+
 TEST(ChainCommand, BadToleranceIsNamed) {
   const CliRun run = mimpact("chain " + scene("c1.json") + " --tolerance -0.1");
   EXPECT_NE(run.exit_code, 0);

@@ -115,7 +115,7 @@ TEST(PaperW, SpeedGoesAsTheForceToTheOneSixth) {
 // measured range.
 TEST(PaperW, PrecompressedChainsFollowEquation22) {
   const numerics::BeadChain beads{0.004, 2.26e11, 0.3, 7650};
-  for (const auto [static_force, striker_speed] : {std::pair{9.8, 0.5}, std::pair{167.0, 2.0}}) {
+  for (const auto& [static_force, striker_speed] : {std::pair{9.8, 0.5}, std::pair{167.0, 2.0}}) {
     chain::ChainScene scene = paper_scene("coste_chain_precompressed.json");
     scene.precompression = static_force;
     scene.strikers[0].velocity = striker_speed;

@@ -127,6 +127,7 @@ class LzbImpulseIntegrator {
   std::size_t flag_capacity_ = 0;
   // per contact: state
   std::vector<double> u_, u_old_, energy_, impulse_, step_impulse_, force_, force_hat_;
+  std::vector<double> impulse_carry_;  // the low-order bits the sum of impulse_ has lost
   std::vector<double> compression_work_, max_force_, time_of_max_;
   std::unique_ptr<bool[]> in_impact_;
   std::vector<Eigen::Index> active_;   // contacts taking part, the first ones listed
