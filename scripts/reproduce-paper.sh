@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds mimpact, runs every experiment of SCENES.md and writes
-# docs/results/ (figures and README.md) from what the runs wrote. About a minute.
-#   bash scripts/reproduce-paper.sh [--only N|M|scaling|J|S|W]
+# docs/results/ (figures and README.md) from what the runs wrote. About thirty seconds.
+#   bash scripts/reproduce-paper.sh [--only C|N|M|scaling|J|S|W]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/packages.sh

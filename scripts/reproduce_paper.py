@@ -23,6 +23,7 @@ import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENES = ROOT / "examples" / "scenes" / "paper"
+CONVERGENCE_SCENES = ROOT / "examples" / "scenes"
 
 
 class Runner:
@@ -34,8 +35,8 @@ class Runner:
         self.count = 0
 
     @staticmethod
-    def load_scene(name):
-        text = (SCENES / name).read_text()
+    def load_scene(name, folder=SCENES):
+        text = (folder / name).read_text()
         text = re.sub(r"^\s*//.*$", "", text, flags=re.M)  # the scene files allow comments
         return json.loads(text)
 
@@ -49,6 +50,18 @@ class Runner:
                        check=True)
         self.count += 1
         return Result(folder)
+
+    def converge(self, scene, tag, first_delta_p, halvings, tolerance=(0.01, 0.01)):
+        """`mimpact converge --json`; its exit status 4 (not converged) is a result, not a failure."""
+        scene_file = self.work / f"{tag}.json"
+        scene_file.write_text(json.dumps(scene, indent=1))
+        args = [self.mimpact, "converge", str(scene_file), "--json", "--from", f"{first_delta_p:.17g}",
+                "--halvings", str(halvings), "--tolerance", *(f"{t:.17g}" for t in tolerance)]
+        run = subprocess.run(args, capture_output=True, text=True)
+        if run.returncode not in (0, 4):
+            raise subprocess.CalledProcessError(run.returncode, args, run.stdout, run.stderr)
+        self.count += 1
+        return json.loads(run.stdout)
 
     def theory(self, forces, site="beads", static_force=0.0, shape=0, **chain):
         args = [self.mimpact, "nesterenko", ",".join(f"{f:.17g}" for f in forces),
@@ -83,6 +96,101 @@ def save(fig, path):
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+# --- C: convergence of the impulse dynamics (seed 000, appendix A.2, tables 2-4) ----------
+
+# The seed's tables 2-4: chain -> [(delta_p, steps, max eta_h, eta+_h, converged)]
+SEED_TABLES = {
+    "C1": [(1e-4, 4622, 0.09, 0.0046, False), (1e-5, 45913, 0.008, 0.0003, True),
+           (1e-6, 458934, 0.003, 0.00015, True)],
+    "C2": [(1e-5, 22331, 0.05, 0.002, False), (1e-6, 223001, 0.006, 0.00007, True)],
+    "C3": [(1e-5, 14139, 0.13, 0.07, False), (1e-6, 272754, 0.013, 0.0018, False),
+           (1e-7, 1363111, 0.03, 0.002, False)],
+}
+# C3 runs with the seed's (Siconos's) fixed termination thresholds, which its verdicts depend on
+CONVERGENCE_SCENE = {"C1": ("c1.json", CONVERGENCE_SCENES), "C2": ("c2.json", CONVERGENCE_SCENES),
+                     "C3": ("c3_fixed_thresholds.json", SCENES)}
+
+
+def experiment_c(runner, out):
+    scenes = {chain: runner.load_scene(*where) for chain, where in CONVERGENCE_SCENE.items()}
+    table = ["| chain | ΔP (N s) | steps, ours / seed | max η_h, ours / seed | η⁺_h, ours / seed | converged, ours / seed |",
+             "|---|---|---|---|---|---|"]
+    verdicts_agree = 0
+    for chain, rows in SEED_TABLES.items():
+        for delta_p, steps, max_eta, eta_plus, converged in rows:
+            ours = runner.converge(scenes[chain], f"C/{chain}_{delta_p:g}", delta_p, 1)["rows"][0]
+            verdicts_agree += ours["converged"] == converged
+            table.append(f"| {chain} | {delta_p:g} | {ours['impulse_steps']} / {steps} | "
+                         f"{ours['max_eta']:.2g} / {max_eta:g} | {ours['eta_plus']:.2g} / {eta_plus:g} | "
+                         f"{'yes' if ours['converged'] else 'no'} / {'yes' if converged else 'no'} |")
+    verdicts = sum(len(rows) for rows in SEED_TABLES.values())
+
+    # the whole halving sweep, past convergence (tolerances no run meets)
+    sweeps = {chain: runner.converge(scenes[chain], f"C/{chain}_sweep", 1e-4, 10, (1e-12, 1e-12))["rows"]
+              for chain in scenes}
+    # e = 1: the post-impact velocities against the exact Hertz chain (the compliant method)
+    deltas = [1e-4, 3e-5, 1e-5, 3e-6, 1e-6, 3e-7]
+    errors, orders = {}, {}
+    for chain in ("C1", "C2"):
+        scene = copy.deepcopy(scenes[chain])
+        scene["method"] = "compliant"
+        scene["compliant"] = {"tolerance": 1e-12}
+        exact = runner.run(scene, f"C/{chain}_compliant").velocities()
+        errors[chain] = []
+        for delta_p in deltas:
+            scene = copy.deepcopy(scenes[chain])
+            scene["impact"]["delta_p"] = delta_p
+            v = runner.run(scene, f"C/{chain}_lzb_{delta_p:g}").velocities()
+            errors[chain].append(np.max(np.abs(v - exact)) / np.max(np.abs(exact)))
+        orders[chain] = np.polyfit(np.log(deltas), np.log(errors[chain]), 1)[0]
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    ax = axes[0]
+    for (chain, rows), colour in zip(sweeps.items(), ("C0", "C1", "C2")):
+        h = [r["delta_p"] for r in rows]
+        ax.loglog(h, [r["max_eta"] for r in rows], "-", color=colour, label=f"{chain}: max η_h")
+        ax.loglog(h, [r["eta_plus"] for r in rows], "--", color=colour, label=f"{chain}: η⁺_h")
+        seed = SEED_TABLES[chain]
+        ax.loglog([r[0] for r in seed], [r[2] for r in seed], "o", color=colour, mfc="none")
+        ax.loglog([r[0] for r in seed], [r[3] for r in seed], "s", color=colour, mfc="none")
+    ax.axhline(0.01, color="k", lw=0.8)
+    ax.set_xlabel("ΔP (N s)")
+    ax.set_ylabel("discrepancy between ΔP and ΔP/2")
+    ax.set_title("lines: mimpact; ○ max η_h, □ η⁺_h: the seed; C3 with the seed's thresholds", fontsize=8)
+    ax.legend(fontsize=7, ncol=2, loc="lower right")
+    ax = axes[1]
+    for chain, marker in (("C1", "o-"), ("C2", "s-")):
+        ax.loglog(deltas, errors[chain], marker, label=f"{chain}: fitted order {orders[chain]:.2f}")
+    ax.loglog(deltas, errors["C1"][0] * np.array(deltas) / deltas[0], "k:", lw=0.8, label="first order")
+    ax.set_xlabel("ΔP (N s)")
+    ax.set_ylabel("max |v⁺ − v⁺_Hertz| / max |v⁺_Hertz|")
+    ax.set_title("e = 1: LZB against the compliant (Hertz) reference", fontsize=8)
+    ax.legend(fontsize=7)
+    save(fig, out / "C_convergence.png")
+
+    c3 = SEED_TABLES["C3"]
+    lock = 0.0
+    for delta_p, *_ in c3:
+        scene = copy.deepcopy(scenes["C3"])
+        scene["impact"]["delta_p"] = delta_p
+        block = runner.run(scene, f"C/C3_block_{delta_p:g}").velocities() / scene["strikers"][0]["velocity"]
+        lock = max(lock, np.max(np.abs(block * len(block) - 1)))
+    text = f"""`mimpact converge SCENE --from ΔP --halvings 1` at each ΔP of the seed's tables 2-4: η_h compares
+the run at ΔP with the run at ΔP/2 at equal principal impulse (max η_h along the impact, η⁺_h after
+it), and the impact is converged when both are below 0.01. {verdicts_agree} of the {verdicts} verdicts are the seed's.
+C3 (e = 0.6) is run with the seed's (Siconos's) fixed termination thresholds, 1e-8 m/s and 1e-8 J
+(`paper/c3_fixed_thresholds.json`): they do not shrink with ΔP, so max η_h stops falling below
+ΔP = 1e-6 and C3 never converges, as in the seed. Each of its runs ends with the chain locked
+into one block (every ball at V/21 to {lock:.0e}, LZB.md §3), so its η⁺_h is small while max η_h, along
+the impact, is not. Its step counts differ from the seed's
+({c3[1][1]} at 1e-6) for the same reason: they depend on where the thresholds end the impact.
+Left, the whole halving sweep from 1e-4: max η_h and η⁺_h fall in proportion to ΔP for C1 and C2.
+Right, for e = 1 the LZB post-impact velocities converge to the exact Hertz chain (the compliant
+method at tolerance 1e-12) at fitted order {orders['C1']:.2f} (C1) and {orders['C2']:.2f} (C2) in ΔP; at
+ΔP = 1e-6 they are {errors['C1'][4]:.1e} (C1) and {errors['C2'][4]:.1e} (C2) from it."""
+    return {"table": "\n".join(table), "text": text, "figures": ["C_convergence.png"], "measured": {}}
 
 
 # --- S: two solitary waves colliding (seed 000, section 7) ---------------------------------
@@ -707,14 +815,15 @@ def main():
     parser.add_argument("--mimpact", required=True, help="the mimpact executable")
     parser.add_argument("--out", default=str(ROOT / "docs" / "results"), help="figures and report")
     parser.add_argument("--work", default=str(ROOT / "build" / "paper"), help="the runs' outputs")
-    parser.add_argument("--only", help="one experiment: S, scaling, J, N, M or W")
+    parser.add_argument("--only", help="one experiment: C, S, scaling, J, N, M or W")
     args = parser.parse_args()
     out, work = Path(args.out), Path(args.work)
     out.mkdir(parents=True, exist_ok=True)
-    for folder in ("S", "scaling", "J", "N", "M", "W"):
+    for folder in ("C", "S", "scaling", "J", "N", "M", "W"):
         (work / folder).mkdir(parents=True, exist_ok=True)
     runner = Runner(args.mimpact, work)
     experiments = [
+        ("C", "C: convergence of the impulse dynamics (seed 000, appendix A.2, tables 2-4)", experiment_c),
         ("N", "N: Nakagawa's tapered chain (seed 000, section 4)", experiment_n),
         ("M", "M: Melo's mono and tapered chains (seed 000, section 5)", experiment_m),
         ("scaling", "The scaling check of seed 000, section 5.1", experiment_scaling),
@@ -735,8 +844,8 @@ def main():
         return
     header = f"""# The experiments of the seeds, reproduced
 
-Written by `scripts/reproduce-paper.sh` from {runner.count} runs of `mimpact chain` on the scenes of
-`examples/scenes/paper/` (and the variations the script makes of them), with theory curves from
+Written by `scripts/reproduce-paper.sh` from {runner.count} runs of `mimpact chain` and `mimpact converge`
+on the scenes of `examples/scenes/` (and the variations the script makes of them), with theory curves from
 `mimpact nesterenko`: every number and figure here comes from what those runs wrote. The seeds'
 numbers are from `../shared/spec/SCENES.md`. Deviations are (mimpact - seed) / seed. Contact i
 joins bodies i and i + 1, body 0 being the left striker; the LZB model is bi-stiffness Hertz.
