@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -60,7 +61,7 @@ void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
   if (quiet || !(share > 1e-2)) return;
   std::fprintf(stderr,
                "mimpact chain: warning: delta_p = %g N s is %.3g of the striker's momentum m V = %g N s; "
-               "the outcome may be off by %.0f %% or more; take delta_p <= 1e-3 m V or use --tolerance\n",
+               "the outcome may be off by %.3g %% or more; take delta_p <= 1e-3 m V or use --tolerance\n",
                delta_p, share, natural_impulse, 100.0 * share);
 }
 
@@ -89,18 +90,17 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (values.count("delta-p")) delta_p_option = values["delta-p"].as<double>();
   std::optional<double> delta_p = delta_p_option ? delta_p_option : scene.delta_p;
   std::optional<numerics::ConvergenceStudy> study;
+  const bool lzb = scene.method == chain::Method::lzb;
+  if (!lzb && delta_p_option)
+    throw InvalidInput("--delta-p is the step of the LZB method; " + scene_file + " has method \"compliant\"");
   if (!tolerance.empty()) {
-    if (scene.method != chain::Method::lzb)
-      throw InvalidInput("--tolerance chooses delta_p for the LZB method; " + scene_file +
-                         " has method \"compliant\"");
-    study = numerics::study_convergence(chain::impact_problem(model),
-                                        convergence_options(scene, model, delta_p_option, tolerance, 12));
+    study = numerics::study_convergence(
+        chain::impact_problem(model), convergence_options(scene, model, delta_p_option, "--delta-p", tolerance, 12));
     if (!study->converged)
-      throw Error(scene_file + ": no delta_p down to " + std::to_string(study->rows.back().delta_p) +
+      throw Error(scene_file + ": no delta_p down to " + to_text(study->rows.back().delta_p) +
                   " N s met --tolerance; loosen it or start smaller; no output written");
     delta_p = study->rows.back().delta_p;
   }
-  const bool lzb = scene.method == chain::Method::lzb;
   if (lzb && !delta_p)
     throw InvalidInput(scene_file + ": missing field impact.delta_p (or give --delta-p or --tolerance)");
   if (!lzb) delta_p.reset();  // the compliant method has no delta_p
@@ -116,8 +116,9 @@ int chain_command(const std::vector<std::string>& arguments) {
     series = std::move(run.series);
   } else {
     numerics::LzbOptions options = scene.lzb_options(*delta_p);
+    chain::check_delta_p(model, *delta_p, options.max_steps, delta_p_option ? "--delta-p" : "impact.delta_p");
     std::string why;
-    if (!options.is_valid(&why)) throw InvalidInput("--delta-p: " + why);
+    if (!options.is_valid(&why)) throw InvalidInput(why);
     warn_if_coarse(*delta_p, chain::natural_impulse(model), quiet);
     chain::ChainRecorder recorder(model, scene.record);
     ProgressReporter progress;
@@ -145,6 +146,8 @@ int chain_command(const std::vector<std::string>& arguments) {
     std::cerr << scene_file << ": " << chain::chain_report(model, impact, delta_p);
   if (impact.lzb.status != numerics::LzbStatus::terminated)
     throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
+  if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite() && std::isfinite(impact.lzb.duration)))
+    throw Error(scene_file + ": the run produced a non-finite velocity, force or duration; no output written");
   if (out_dir.empty()) {
     std::cout << summary.dump(2) << "\n";
   } else {
@@ -153,7 +156,7 @@ int chain_command(const std::vector<std::string>& arguments) {
       if (!series.contacts.empty()) files["forces.csv"] = series.forces_csv();
       if (!series.bodies.empty()) files["velocities.csv"] = series.velocities_csv();
     }
-    write_output_directory(out_dir, files);
+    write_output_directory(out_dir, files, {"summary.json", "forces.csv", "velocities.csv"});
   }
   return 0;
 }

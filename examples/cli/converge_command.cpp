@@ -30,7 +30,7 @@ int converge_command(const std::vector<std::string>& arguments) {
   const std::optional<double> from =
       values.count("from") ? std::optional<double>(values["from"].as<double>()) : std::nullopt;
   const numerics::ConvergenceStudy study = numerics::study_convergence(
-      chain::impact_problem(model), convergence_options(scene, model, from, tolerance, halvings));
+      chain::impact_problem(model), convergence_options(scene, model, from, "--from", tolerance, halvings));
   if (values.count("json"))
     std::cout << convergence_json(study).dump(2) << "\n";
   else

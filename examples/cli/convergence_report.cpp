@@ -9,13 +9,19 @@ namespace mimpact::cli {
 numerics::ConvergenceOptions convergence_options(const chain::ChainScene& scene,
                                                  const chain::ChainModel& model,
                                                  std::optional<double> first,
+                                                 const std::string& first_option,
                                                  const std::vector<double>& tolerance,
                                                  int max_halvings) {
+  if (scene.method != chain::Method::lzb)
+    throw InvalidInput("the convergence study runs the LZB method over delta_p; the scene has method "
+                       "\"compliant\"");
   if (tolerance.size() > 2)
     throw InvalidInput("--tolerance takes eps+ and at most eps; got " + std::to_string(tolerance.size()) +
                        " values");
   numerics::ConvergenceOptions options;
   options.first_delta_p = first ? *first : scene.delta_p ? *scene.delta_p : 1e-3 * chain::natural_impulse(model);
+  chain::check_delta_p(model, options.first_delta_p, options.integrator.max_steps,
+                       first ? first_option : "impact.delta_p");
   if (!tolerance.empty()) options.epsilon_plus = options.epsilon = tolerance[0];
   if (tolerance.size() == 2) options.epsilon = tolerance[1];
   options.max_halvings = max_halvings;

@@ -12,11 +12,13 @@
 namespace mimpact::cli {
 
 // The study that `converge` runs and `chain --tolerance` uses to choose delta_p. The first
-// delta_p is `first` when given, else the scene's, else 1e-3 of the natural impulse m V;
-// `tolerance` holds eps+ and optionally eps (default 0.01 each, eps = eps+ when one is given).
+// delta_p is `first` (the command line option `first_option`) when given, else the scene's,
+// else 1e-3 of the natural impulse m V; `tolerance` holds eps+ and optionally eps (default
+// 0.01 each, eps = eps+ when one is given). Throws InvalidInput for a compliant scene.
 numerics::ConvergenceOptions convergence_options(const chain::ChainScene& scene,
                                                  const chain::ChainModel& model,
                                                  std::optional<double> first,
+                                                 const std::string& first_option,
                                                  const std::vector<double>& tolerance,
                                                  int max_halvings);
 

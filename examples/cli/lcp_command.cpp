@@ -12,6 +12,15 @@ namespace mimpact::cli {
 
 namespace po = boost::program_options;
 
+namespace {
+
+// The file name is the user's bytes, not always UTF-8: replace what JSON cannot hold.
+std::string dump(const nlohmann::ordered_json& value) {
+  return value.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+}  // namespace
+
 int lcp_command(const std::vector<std::string>& arguments) {
   std::string file;
   numerics::LemkeOptions options;
@@ -20,14 +29,15 @@ int lcp_command(const std::vector<std::string>& arguments) {
                         "pivot limit (0: 1000 + 100 n)");
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "file", file, values)) return 0;
+  std::string why;
+  if (!options.is_valid(&why)) throw InvalidInput("--max-pivots: " + why);
 
   numerics::LcpProblem problem;
   try {
     problem = numerics::read_lcp_file(file);
   } catch (const InvalidInput& error) {
     // still one JSON object on stdout, so scripts see the outcome of every file
-    std::cout << nlohmann::ordered_json{{"file", file}, {"status", "invalid"}, {"message", error.what()}}
-                     .dump(2)
+    std::cout << dump(nlohmann::ordered_json{{"file", file}, {"status", "invalid"}, {"message", error.what()}})
               << "\n";
     throw;
   }
@@ -41,7 +51,7 @@ int lcp_command(const std::vector<std::string>& arguments) {
       {"z", std::vector<double>(result.z.data(), result.z.data() + result.z.size())},
       {"w", std::vector<double>(result.w.data(), result.w.data() + result.w.size())}};
   if (!result.message.empty()) out["message"] = result.message;
-  std::cout << out.dump(2) << "\n";
+  std::cout << dump(out) << "\n";
   // a ray or a pivot limit is an outcome, reported in "status"; only bad input fails
   return result.status == numerics::LemkeStatus::invalid_input ? 1 : 0;
 }

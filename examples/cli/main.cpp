@@ -1,9 +1,6 @@
-// mimpact: the command line of the library.
-//   mimpact chain SCENE.json [--out DIR] [--delta-p X | --tolerance eps+ [eps]] [--quiet]
-//   mimpact lcp FILE [--max-pivots N]
-//   mimpact nesterenko F1,F2,... [options]
-//   mimpact converge SCENE.json [--from h] [--tolerance eps+ [eps]] [--json]
+// mimpact: the command line of the library; kUsage lists its commands.
 #include <boost/program_options/errors.hpp>
+#include <exception>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -20,7 +17,7 @@ constexpr const char* kUsage =
     "      the multiple impact of a granular chain; prints summary.json or writes it to DIR\n"
     "  lcp FILE [--max-pivots N]\n"
     "      solves the LCP of FILE (Siconos test format) with Lemke's method; prints JSON\n"
-    "  converge SCENE.json [--from h] [--tolerance eps+ [eps]] [--json]\n"
+    "  converge SCENE.json [--from h] [--tolerance eps+ [eps]] [--halvings N] [--json]\n"
     "      delta_p = h, h/2, ... until the impact converges (seed 000, appendix A.2)\n"
     "  nesterenko F1,F2,... [--radius a] [--static-force F0] [--site beads|sensor] ...\n"
     "      speed and width of Nesterenko's solitary waves (seed 001) for these peak forces\n"
@@ -51,6 +48,14 @@ int main(int argc, char** argv) {
     std::cerr << "mimpact " << command << ": " << error.what() << "\n";
     return 2;
   } catch (const mimpact::Error& error) {
+    std::cerr << "mimpact " << command << ": error: " << error.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "mimpact " << command << ": error: out of memory; the problem is too large for this machine\n";
+    return 1;
+  } catch (const std::exception& error) {
+    // a library below mimpact (Boost, nlohmann::json, the standard library) refused: still one
+    // line and a failure status, never an abort
     std::cerr << "mimpact " << command << ": error: " << error.what() << "\n";
     return 1;
   }

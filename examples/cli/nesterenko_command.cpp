@@ -1,7 +1,7 @@
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <cmath>
 #include <sstream>
 
 #include "command_line.hpp"
@@ -15,7 +15,7 @@ namespace po = boost::program_options;
 
 namespace {
 
-std::vector<double> parse_list(const std::string& text, const std::string& option) {
+std::vector<double> parse_forces(const std::string& text) {
   std::vector<double> values;
   std::stringstream in(text);
   std::string item;
@@ -27,10 +27,11 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != item.size() || !(value > 0.0))
-      throw InvalidInput("--" + option + ": \"" + item + "\" is invalid; allowed: forces > 0 (N), comma-separated");
+    if (used != item.size() || !(value > 0.0 && std::isfinite(value)))
+      throw InvalidInput("FORCES: \"" + item + "\" is invalid; allowed: finite forces > 0 (N), comma-separated");
     values.push_back(value);
   }
+  if (values.empty()) throw InvalidInput("FORCES is empty; allowed: finite forces > 0 (N), comma-separated");
   return values;
 }
 
@@ -54,11 +55,13 @@ int nesterenko_command(const std::vector<std::string>& arguments) {
   if (!parse_command_line(arguments, visible, "forces", forces_text, values)) return 0;
   if (site != "beads" && site != "sensor")
     throw InvalidInput("--site \"" + site + "\" is invalid; allowed: beads, sensor");
-  if (!(static_force >= 0.0))
-    throw InvalidInput(invalid_value_message("--static-force", static_force, ">= 0 (N)"));
+  if (!(static_force >= 0.0 && std::isfinite(static_force)))
+    throw InvalidInput(invalid_value_message("--static-force", static_force, "a finite F_0 >= 0 (N)"));
+  if (shape != 0 && !(shape >= 2 && shape <= 1'000'000))
+    throw InvalidInput(invalid_value_message("--shape", shape, "0 (no pulse) or 2 to 1e6 samples"));
   const numerics::ForceSite where =
       site == "sensor" ? numerics::ForceSite::sensor : numerics::ForceSite::between_beads;
-  const std::vector<double> forces = parse_list(forces_text, "forces");
+  const std::vector<double> forces = parse_forces(forces_text);
 
   nlohmann::ordered_json out{{"theta", chain.theta()}, {"C", chain.C()}, {"mass", chain.mass()},
                              {"static_force", static_force}, {"site", site}};

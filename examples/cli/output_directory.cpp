@@ -26,8 +26,14 @@ void write_file(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-void write_output_directory(const fs::path& directory,
-                            const std::map<std::string, std::string>& contents) {
+void write_output_directory(const fs::path& requested,
+                            const std::map<std::string, std::string>& contents,
+                            const std::vector<std::string>& written_by_command) {
+  // "out/" and "out/." name the directory "out"; renaming into place needs its own name
+  fs::path directory = requested.lexically_normal();
+  while (!directory.empty() && (!directory.has_filename() || directory.filename() == "."))
+    directory = directory.parent_path();
+  if (directory.empty()) directory = fs::current_path();
   std::error_code error;
   if (fs::exists(directory, error)) {
     if (!fs::is_directory(directory, error))
@@ -44,6 +50,9 @@ void write_output_directory(const fs::path& directory,
       fs::rename(partial, directory / name, error);
       if (error) throw Error((directory / name).string() + ": " + error.message());
     }
+    for (const std::string& name : written_by_command)
+      if (!contents.count(name) && (fs::remove(directory / name, error), error))
+        throw Error((directory / name).string() + ": cannot remove this file of an earlier run: " + error.message());
     return;
   }
   const fs::path parent = directory.has_parent_path() ? directory.parent_path() : fs::path(".");

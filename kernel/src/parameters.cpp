@@ -1,5 +1,8 @@
 #include "mimpact/kernel/parameters.hpp"
 
+#include <cmath>
+#include <string>
+
 #include "mimpact/numerics/error.hpp"
 
 namespace mimpact::kernel {
@@ -7,6 +10,17 @@ namespace mimpact::kernel {
 double Parameters::get(const std::string& name, double fallback) const {
   const auto found = values_.find(name);
   return found == values_.end() ? fallback : found->second;
+}
+
+std::int64_t Parameters::get_integer(const std::string& name, std::int64_t fallback,
+                                     std::int64_t lowest, std::int64_t highest) const {
+  const auto found = values_.find(name);
+  if (found == values_.end()) return fallback;
+  const double value = found->second;
+  if (!(value == std::floor(value) && value >= double(lowest) && value <= double(highest)))
+    throw InvalidInput(invalid_value_message(name, value, "an integer in [" + std::to_string(lowest) + ", " +
+                                                              std::to_string(highest) + "]"));
+  return std::int64_t(value);
 }
 
 void Parameters::allow_only(std::string_view owner,

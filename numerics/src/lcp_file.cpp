@@ -17,10 +17,13 @@ double next_number(std::istream& in, const std::string& source, const std::strin
   return value;
 }
 
+// Dense storage: n = 10 000 is already 800 MB for M alone.
+constexpr double kLargestSize = 10000;
+
 Eigen::Index next_size(std::istream& in, const std::string& source, const std::string& field) {
   const double value = next_number(in, source, field);
-  if (!(value >= 0.0 && value == std::floor(value) && value < 1e7))
-    throw InvalidInput(source + ": " + invalid_value_message(field, value, "an integer >= 0"));
+  if (!(value >= 0.0 && value == std::floor(value) && value <= kLargestSize))
+    throw InvalidInput(source + ": " + invalid_value_message(field, value, "an integer in [0, 10000] (dense storage)"));
   return Eigen::Index(value);
 }
 
@@ -47,6 +50,7 @@ LcpProblem read_lcp(std::istream& in, const std::string& source) {
           in, source, "M(" + std::to_string(row) + ", " + std::to_string(column) + ")");
   for (Eigen::Index i = 0; i < n; ++i)
     problem.q(i) = next_number(in, source, "q(" + std::to_string(i) + ")");
+  // what follows q (Siconos files often carry a reference solution there) is not read
   return problem;
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "mimpact/numerics/error.hpp"
 #include "mimpact/numerics/lcp_problem.hpp"
 
 namespace mimpact::numerics {
@@ -25,12 +26,14 @@ bool LemkeOptions::is_valid(std::string* why) const {
     if (why) *why = text;
     return false;
   };
-  if (max_pivots < 0) return fail("max_pivots must be >= 0 (0 = automatic)");
+  if (max_pivots < 0)
+    return fail(invalid_value_message("max_pivots", max_pivots, "an integer >= 0 (0: 1000 + 100 n)"));
   if (!(pivot_tolerance >= 0.0 && pivot_tolerance < 1.0))
-    return fail("pivot_tolerance must be in [0, 1)");
+    return fail(invalid_value_message("pivot_tolerance", pivot_tolerance, "0 <= tolerance < 1"));
   if (!(ratio_tolerance >= 0.0 && ratio_tolerance < 1.0))
-    return fail("ratio_tolerance must be in [0, 1)");
-  if (!(acceptance_tolerance > 0.0)) return fail("acceptance_tolerance must be > 0");
+    return fail(invalid_value_message("ratio_tolerance", ratio_tolerance, "0 <= tolerance < 1"));
+  if (!(acceptance_tolerance > 0.0 && std::isfinite(acceptance_tolerance)))
+    return fail(invalid_value_message("acceptance_tolerance", acceptance_tolerance, "a finite value > 0"));
   return true;
 }
 

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <string>
-#include <cstdio>
 
 #include "mimpact/numerics/error.hpp"
 
@@ -53,12 +52,10 @@ class Sampler : public ImpactObserver {
     run_.velocities.insert(run_.velocities.end(), velocity_.data(), velocity_.data() + velocity_.size());
     if (coarser_) {
       coarser_->velocity_at(sample.principal_impulse, cursor_, other_);
-      double r = relative(other_, velocity_);
-      if (r > max_eta) { Eigen::Index i; (other_-velocity_).cwiseAbs().maxCoeff(&i); where_p = sample.principal_impulse; where_i = i; where_t = sample.time; vf = velocity_(i); vc = other_(i); nrm = velocity_.cwiseAbs().maxCoeff(); }
-      max_eta = std::max(max_eta, r);
+      max_eta = std::max(max_eta, relative(other_, velocity_));
     }
   }
-  double max_eta = 0.0, where_p=0, where_t=0, vf=0, vc=0, nrm=0; Eigen::Index where_i=0;
+  double max_eta = 0.0;  // eta_h(P) at its largest so far
 
  private:
   const ImpactProblemData& problem_;
@@ -75,16 +72,16 @@ Run run(const ImpactProblemData& problem, LzbOptions options, double delta_p, co
   options.sample_every = 1;
   options.sampled_contacts.clear();
   LzbImpulseIntegrator integrator(options);
-  Run r;
-  r.dof = problem.velocity_before.size();
-  Sampler sampler(problem, r, coarser);
+  Run measured;
+  measured.dof = problem.velocity_before.size();
+  Sampler sampler(problem, measured, coarser);
   const auto start = std::chrono::steady_clock::now();
-  r.result = integrator.integrate(problem.H, problem.u_minus, problem.laws, &sampler);
-  r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (r.result.status != LzbStatus::terminated) throw Error("convergence study: " + r.result.message);
-  r.velocity_after = problem.velocity_before + problem.mobility * r.result.impulse;
+  measured.result = integrator.integrate(problem.H, problem.u_minus, problem.laws, &sampler);
+  measured.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (measured.result.status != LzbStatus::terminated) throw Error("convergence study: " + measured.result.message);
+  measured.velocity_after = problem.velocity_before + problem.mobility * measured.result.impulse;
   max_eta = sampler.max_eta;
-  return r;
+  return measured;
 }
 
 ConvergenceRow row_of(const Run& coarse, const Run& fine, double max_eta, double h,

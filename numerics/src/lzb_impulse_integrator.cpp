@@ -507,6 +507,11 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   for (std::size_t a = 0; a < active_count; ++a) result.residual_energy += energy[active[a]];
   result.steps = step;
   result.duration = time;
+  // finite inputs can still overflow (an exponent of 1e3 puts E^(eta/(1+eta)) past double)
+  if (!(std::isfinite(time) && result.velocity.allFinite() && result.max_force.allFinite()))
+    throw Error("the impact's " + std::string(std::isfinite(time) ? "velocities or forces" : "duration") +
+                " overflowed double precision after " + std::to_string(step) +
+                " steps; the contact laws' stiffness K and exponent eta are out of the range it resolves");
   return result;
 }
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "mimpact/numerics/error.hpp"
 
@@ -53,10 +54,17 @@ double turning_point(double y_inf) {
   return 0.5 * (a + b);
 }
 
+void check_positive(const std::string& field, double value, const std::string& unit) {
+  if (!(value > 0.0 && std::isfinite(value)))
+    throw InvalidInput(invalid_value_message(field, value, "a finite value > 0 (" + unit + ")"));
+}
+
 void check_chain(const BeadChain& chain) {
-  if (!(chain.radius > 0.0 && chain.young > 0.0 && chain.density > 0.0 && chain.poisson > -1.0 &&
-        chain.poisson < 0.5))
-    throw InvalidInput("bead chain: radius, young and density must be > 0 and poisson in (-1, 0.5)");
+  check_positive("bead chain radius", chain.radius, "m");
+  check_positive("bead chain young", chain.young, "Pa");
+  check_positive("bead chain density", chain.density, "kg/m^3");
+  if (!(chain.poisson > -1.0 && chain.poisson < 0.5))
+    throw InvalidInput(invalid_value_message("bead chain poisson", chain.poisson, "-1 < nu < 0.5"));
 }
 
 }  // namespace
@@ -67,7 +75,7 @@ double BeadChain::C() const { return std::sqrt(2.0 * radius * radius * radius / 
 
 double solitary_wave_speed(const BeadChain& chain, double peak_force, ForceSite site) {
   check_chain(chain);
-  if (!(peak_force > 0.0)) throw InvalidInput(invalid_value_message("peak force", peak_force, "> 0 (N)"));
+  check_positive("peak force", peak_force, "N");
   return chain.C() * std::sqrt(0.8) *
          std::pow(factor(site) * chain.theta() * peak_force / (chain.radius * chain.radius), 1.0 / 6.0);
 }
@@ -79,9 +87,8 @@ double solitary_wave_width(const BeadChain& chain, double speed) {
 PrecompressedWave precompressed_solitary_wave(const BeadChain& chain, double peak_force,
                                               double static_force, ForceSite site) {
   check_chain(chain);
-  if (!(peak_force > 0.0)) throw InvalidInput(invalid_value_message("peak force", peak_force, "> 0 (N)"));
-  if (!(static_force > 0.0))
-    throw InvalidInput(invalid_value_message("static force", static_force, "> 0 (N); 0 is solitary_wave_speed"));
+  check_positive("peak force", peak_force, "N");
+  check_positive("static force", static_force, "N; 0 is solitary_wave_speed");
   const double a = chain.radius, theta = chain.theta();
   PrecompressedWave wave;
   const double psi_inf = std::pow(theta * static_force, 2.0 / 3.0) / std::pow(a, 4.0 / 3.0);
@@ -91,14 +98,25 @@ PrecompressedWave precompressed_solitary_wave(const BeadChain& chain, double pea
   wave.strain_ratio = (std::pow(s * (peak_force + static_force), 2.0 / 3.0) -
                        std::pow(s * static_force, 2.0 / 3.0) + std::pow(static_force, 2.0 / 3.0)) /
                       std::pow(static_force, 2.0 / 3.0);
-  auto mismatch = [&](double y_inf) {
-    return std::pow(turning_point(y_inf) / y_inf, 0.8) - wave.strain_ratio;
-  };
-  std::uintmax_t iterations = 200;
+  // the strain ratio of the wave that leaves y_inf (eq. 23's orbit)
+  auto strain_ratio_of = [](double y_inf) { return std::pow(turning_point(y_inf) / y_inf, 0.8); };
+  auto mismatch = [&](double y_inf) { return strain_ratio_of(y_inf) - wave.strain_ratio; };
+  const std::uintmax_t max_iterations = 200;
+  std::uintmax_t iterations = max_iterations;
   const double high = kLargestYInfinity * (1.0 - 1e-9);
   const double low = 1e-12;
+  // a strain ratio outside the range y_inf in [low, high] reaches has no root to bracket
+  const double smallest_ratio = strain_ratio_of(high), largest_ratio = strain_ratio_of(low);
+  if (!(wave.strain_ratio > smallest_ratio && wave.strain_ratio < largest_ratio))
+    throw InvalidInput(invalid_value_message("peak force / static force", peak_force / static_force,
+                                             "a ratio whose strain ratio (here " + to_text(wave.strain_ratio) +
+                                                 ") lies in (" + to_text(smallest_ratio) + ", " +
+                                                 to_text(largest_ratio) + "), what eq. 23 resolves"));
   const auto [lower, upper] = boost::math::tools::toms748_solve(
       mismatch, low, high, [](double x, double y) { return std::abs(y - x) <= 1e-13 * y; }, iterations);
+  if (iterations >= max_iterations)
+    throw Error("precompressed solitary wave: y_inf not found in " + std::to_string(max_iterations) +
+                " iterations for F_m = " + to_text(peak_force) + " N, F_0 = " + to_text(static_force) + " N");
   wave.y_infinity = 0.5 * (lower + upper);
   wave.y_max = turning_point(wave.y_infinity);
   wave.speed = wave.sound_speed * std::sqrt(2.0 / 3.0) * std::pow(wave.y_infinity, -0.2);

@@ -1,5 +1,7 @@
 #include "mimpact/plugins/acceleration_lcp_problem.hpp"
 
+#include <limits>
+
 #include "mimpact/numerics/error.hpp"
 
 namespace mimpact::plugins {
@@ -14,7 +16,7 @@ std::unique_ptr<kernel::ContactForceProblem> AccelerationLcpProblem::create(
     const kernel::Parameters& parameters) {
   parameters.allow_only("contact force problem \"acceleration-lcp\"", {"max_pivots"});
   numerics::LemkeOptions options;
-  options.max_pivots = int(parameters.get("max_pivots", options.max_pivots));
+  options.max_pivots = int(parameters.get_integer("max_pivots", options.max_pivots, 0, std::numeric_limits<int>::max()));
   return std::make_unique<AccelerationLcpProblem>(options);
 }
 

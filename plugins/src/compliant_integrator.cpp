@@ -69,7 +69,7 @@ std::unique_ptr<kernel::OneStepIntegrator> CompliantIntegrator::create(const ker
   o.relative_tolerance = parameters.get("relative_tolerance", o.relative_tolerance);
   o.max_step = parameters.get("max_step", o.max_step);
   o.event_tolerance = parameters.get("event_tolerance", o.event_tolerance);
-  o.samples_per_step = int(parameters.get("samples_per_step", o.samples_per_step));
+  o.samples_per_step = int(parameters.get_integer("samples_per_step", o.samples_per_step, 1, 1'000'000));
   return std::make_unique<CompliantIntegrator>(o);
 }
 

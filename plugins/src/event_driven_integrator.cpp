@@ -79,12 +79,13 @@ std::unique_ptr<kernel::OneStepIntegrator> EventDrivenIntegrator::create(
   o.relative_tolerance = parameters.get("relative_tolerance", o.relative_tolerance);
   o.max_step = parameters.get("max_step", o.max_step);
   o.event_tolerance = parameters.get("event_tolerance", o.event_tolerance);
-  o.samples_per_step = int(parameters.get("samples_per_step", o.samples_per_step));
+  o.samples_per_step = int(parameters.get_integer("samples_per_step", o.samples_per_step, 1, 1'000'000));
   o.gap_tolerance = parameters.get("gap_tolerance", o.gap_tolerance);
   o.velocity_tolerance = parameters.get("velocity_tolerance", o.velocity_tolerance);
   o.rest_flight_time = parameters.get("rest_flight_time", o.rest_flight_time);
   o.max_events_at_one_instant =
-      int(parameters.get("max_events_at_one_instant", o.max_events_at_one_instant));
+      int(parameters.get_integer("max_events_at_one_instant", o.max_events_at_one_instant, 1,
+                                 std::numeric_limits<int>::max()));
   return std::make_unique<EventDrivenIntegrator>(o);
 }
 

@@ -29,9 +29,9 @@ std::unique_ptr<kernel::ImpactProblem> LzbImpactProblem::create(
   options.integrator.termination_velocity_factor = parameters.get(
       "termination_velocity_factor", options.integrator.termination_velocity_factor);
   options.relative_delta_p = parameters.get("relative_delta_p", options.relative_delta_p);
-  options.integrator.max_steps =
-      std::int64_t(parameters.get("max_steps", double(options.integrator.max_steps)));
-  options.dense_up_to = Index(parameters.get("dense_up_to", double(options.dense_up_to)));
+  options.integrator.max_steps = parameters.get_integer("max_steps", options.integrator.max_steps, 1,
+                                                        std::int64_t(1) << 62);
+  options.dense_up_to = Index(parameters.get_integer("dense_up_to", options.dense_up_to, 0, std::int64_t(1) << 31));
   return std::make_unique<LzbImpactProblem>(options);
 }
 

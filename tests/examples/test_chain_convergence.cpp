@@ -60,7 +60,7 @@ TEST(Conservation, ElasticChainKeepsItsEnergyToSecondOrder) {
     const chain::ChainImpact impact = run_chain(model, delta_p);
     const double error = std::abs(kinetic_energy_ratio(model, impact) - 1.0);
     const double h = delta_p / natural_impulse;
-    EXPECT_LE(error, 100.0 * h * h) << "delta_p = " << delta_p;
+    EXPECT_LE(error, h * h) << "delta_p = " << delta_p;  // measured: 0.24 to 0.35 h^2
     errors.push_back(error);
     std::printf("C1 delta_p = %g: kinetic energy changes by %+.3g %%\n", delta_p,
                 100.0 * (kinetic_energy_ratio(model, impact) - 1.0));
@@ -168,7 +168,7 @@ TEST(Convergence, LzbConvergesToTheCompliantReferenceAtFirstOrder) {
     const Eigen::VectorXd hertz = integrate_hertz_chain(model.mass, model.velocity, stiffnesses(model)).velocity;
     const double agreement = relative_difference(reference.impact.velocity_after, hertz);
     std::printf("%s: ||v+_compliant - v+_Hertz|| / ||v+_Hertz|| = %.2g\n", scene_name, agreement);
-    EXPECT_LE(agreement, 1e-8) << scene_name;
+    EXPECT_LE(agreement, 1e-9) << scene_name;  // measured: 5.4e-11 (C1), 3.0e-11 (C2)
     std::vector<double> x, y;
     for (double delta_p : {1e-4, 1e-5, 1e-6}) {
       const double error =
@@ -178,7 +178,15 @@ TEST(Convergence, LzbConvergesToTheCompliantReferenceAtFirstOrder) {
       std::printf("%s delta_p = %g: ||v+_LZB - v+_compliant|| / ||v+_compliant|| = %.3g\n", scene_name,
                   delta_p, error);
     }
-    const double slope = ((x[2] - x[0]) * (y[2] - y[0])) / ((x[2] - x[0]) * (x[2] - x[0]));
+    // least-squares slope of log(error) against log(delta_p) through the three runs
+    const double x_mean = (x[0] + x[1] + x[2]) / 3.0, y_mean = (y[0] + y[1] + y[2]) / 3.0;
+    double sxy = 0.0, sxx = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      sxy += (x[k] - x_mean) * (y[k] - y_mean);
+      sxx += (x[k] - x_mean) * (x[k] - x_mean);
+    }
+    const double slope = sxy / sxx;
+    std::printf("%s: fitted order %.3f\n", scene_name, slope);
     EXPECT_GE(slope, 0.8) << scene_name;
     EXPECT_LE(slope, 1.2) << scene_name;
   }

@@ -59,12 +59,8 @@ TEST(LcpSuite, EveryDenseFileIsCovered) {
 TEST(LcpSuite, BimatrixGameCps3EndsInRayTermination) {
   const LcpProblem problem = read_lcp_file(lcp_data("lcp_CPS_3.dat"));
   const LemkeResult result = solve_lemke(problem.M, problem.q);
-  if (result.status == LemkeStatus::solved) {
-    EXPECT_LE(complementarity_error(problem.M, problem.q, result.z), 1e-9);
-  } else {
-    EXPECT_EQ(result.status, LemkeStatus::ray_termination);
-    EXPECT_FALSE(result.message.empty());
-  }
+  EXPECT_EQ(result.status, LemkeStatus::ray_termination);
+  EXPECT_FALSE(result.message.empty());
 }
 
 TEST(LcpSuite, MmcTakesFewPivotsDespiteLargeEntries) {

@@ -2,19 +2,18 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
-
-#include "mimpact/chain/chain_recorder.hpp"
-#include "mimpact/numerics/pulse_analysis.hpp"
 #include <optional>
 
+#include "mimpact/chain/chain_recorder.hpp"
 #include "mimpact/kernel/simulation.hpp"
 #include "mimpact/numerics/error.hpp"
+#include "mimpact/numerics/pulse_analysis.hpp"
 #include "mimpact/plugins/acceleration_lcp_problem.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/plugins/event_driven_integrator.hpp"
 #include "mimpact/plugins/lzb_impact_problem.hpp"
-#include <cstdio>
 
 namespace mimpact::chain {
 
@@ -32,6 +31,12 @@ class Impacts : public kernel::SimulationObserver {
   }
 
   void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
+    // A step the LZB thresholds cannot resolve the approach with would let the striker through.
+    if (lzb_.last_result().steps == 0)
+      throw InvalidInput("the impact at t = " + to_text(report.time) +
+                         " s took no impulse step: no contact approaches faster than the LZB velocity "
+                         "threshold (0.1 H_jj delta_p, or impact.fixed_thresholds.velocity); take a "
+                         "smaller delta_p or threshold");
     const kernel::NonSmoothDynamicalSystem& system = simulation.system();
     Eigen::VectorXd velocity(system.system_count());
     for (kernel::Index k = 0; k < system.system_count(); ++k) velocity(k) = system.system(k).velocity()(0);
@@ -61,7 +66,7 @@ class Impacts : public kernel::SimulationObserver {
 
   ChainImpact result() {
     if (result_.impact_times.empty())
-      throw Error("the strikers never reached the chain");  // a validated scene cannot get here
+      throw Error("the strikers never reached the chain within the simulated time");
     total_.velocity = model_.W.transpose() * result_.velocity_after;
     result_.lzb = total_;
     return result_;
@@ -200,6 +205,7 @@ CompliantChainRun simulate_chain_compliant(const ChainModel& model, const Compli
   impact.lzb.time_of_max_force =
       Eigen::Map<const Eigen::VectorXd>(integrator.times_of_max_force().data(), m).array() - impact.impact_time;
   impact.lzb.steps = summary.smooth_steps;
+  impact.cut_by_end_time = !watch.precompressed && !integrator.contacts_open();
   // a free chain's impact lasts until its last contact opens; a precompressed one's, the run
   impact.lzb.duration =
       (watch.precompressed || watch.last_opening < 0.0 ? summary.end_time : watch.last_opening) - impact.impact_time;
@@ -240,7 +246,7 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
                         {"impulse", impact.lzb.impulse(i)}});
   const Eigen::VectorXd& after = impact.velocity_after;
   json summary{
-      {"status", numerics::to_string(impact.lzb.status)},
+      {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.lzb.status)},
       {"delta_p", delta_p ? json(*delta_p) : json(nullptr)},
       {"post_impact_velocities", std::vector<double>(after.data(), after.data() + after.size())},
       {"impulse_steps", impact.lzb.steps},
@@ -274,7 +280,8 @@ std::string chain_report(const ChainModel& model, const ChainImpact& impact, std
   std::snprintf(line, sizeof line,
                 "%lld impulse steps in %.3g s of computation; the impact lasts %.6g s (%s)\n",
                 (long long)impact.lzb.steps, impact.wall_time, impact.lzb.duration,
-                std::string(numerics::to_string(impact.lzb.status)).c_str());
+                impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
+                                       : std::string(numerics::to_string(impact.lzb.status)).c_str());
   report += line;
   std::snprintf(line, sizeof line,
                 "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum %.9g -> %.9g N s\n",

@@ -31,6 +31,34 @@ std::vector<Body> bodies_of(const ChainScene& scene) {
   return bodies;
 }
 
+// Presses the beads against the wall with the scene's static force F_0: every contact of the
+// beads carries F_0 at overlap (F_0 / K)^(1/eta); the beads are placed from the wall back.
+void precompress(ChainModel& model, const ChainScene& scene) {
+  const double eta = scene.contact.exponent;
+  const Eigen::Index n = model.body_count(), first_bead = model.first_bead;
+  double largest_force = INFINITY;  // N: the force at which an overlap reaches the smaller radius
+  for (Eigen::Index j = first_bead; j < Eigen::Index(model.laws.size()); ++j) {
+    const double smaller_radius = j + 1 < n ? std::min(model.radius(j), model.radius(j + 1)) : model.radius(j);
+    largest_force = std::min(largest_force, model.laws[std::size_t(j)].stiffness * std::pow(smaller_radius, eta));
+  }
+  if (!(scene.precompression < largest_force))
+    throw InvalidInput(invalid_value_message("precompression", scene.precompression,
+                                             "< " + to_text(largest_force) +
+                                                 " N, where a static overlap reaches a bead's radius"));
+  model.precompression = scene.precompression;
+  auto overlap = [&](Eigen::Index contact) {
+    return std::pow(scene.precompression / model.laws[std::size_t(contact)].stiffness, 1.0 / eta);
+  };
+  for (Eigen::Index j = first_bead; j < Eigen::Index(model.laws.size()); ++j)
+    model.largest_static_overlap = std::max(model.largest_static_overlap, overlap(j));
+  const Eigen::Index last = n - 1;
+  model.position(last) = model.wall_position - model.radius(last) + overlap(Eigen::Index(model.laws.size()) - 1);
+  for (Eigen::Index i = last - 1; i >= first_bead; --i)
+    model.position(i) = model.position(i + 1) - model.radius(i) - model.radius(i + 1) + overlap(i);
+  if (const StrikerSpec* left = scene.striker(Side::left))
+    model.position(0) = model.position(1) - model.radius(0) - model.radius(1) - left->gap;
+}
+
 }  // namespace
 
 ChainModel build_chain_model(const ChainScene& scene) {
@@ -45,6 +73,11 @@ ChainModel build_chain_model(const ChainScene& scene) {
     model.radius(i) = bodies[i].radius;
     model.mass(i) = bead_mass(bodies[i].radius, bodies[i].material);
     model.velocity(i) = bodies[i].velocity;
+    // valid fields can still multiply out of double's range: a long steep taper, a tiny radius
+    if (!(model.mass(i) > 0.0 && std::isfinite(model.mass(i))))
+      throw InvalidInput("body " + std::to_string(i) + " (radius " + to_text(model.radius(i)) +
+                         " m): " + invalid_value_message("mass", model.mass(i), "a finite mass > 0 kg") +
+                         "; check the radii, tapers and densities of the scene");
   }
   // touching bodies left to right, the first bead at 0; strikers off by their gaps
   const StrikerSpec* left = scene.striker(Side::left);
@@ -84,21 +117,7 @@ ChainModel build_chain_model(const ChainScene& scene) {
     add_law(hertz_stiffness_wall(bodies[n - 1].radius, bodies[n - 1].material, scene.wall->material));
   }
   model.first_bead = first_bead;
-  if (scene.precompression > 0.0) {
-    // every contact of the beads carries F_0: overlap (F_0 / K)^(1/eta), from the wall back
-    model.precompression = scene.precompression;
-    const double eta = scene.contact.exponent;
-    auto overlap = [&](std::size_t contact) {
-      return std::pow(scene.precompression / model.laws[contact].stiffness, 1.0 / eta);
-    };
-    for (std::size_t contact = std::size_t(first_bead); contact < model.laws.size(); ++contact)
-      model.largest_static_overlap = std::max(model.largest_static_overlap, overlap(contact));
-    const Eigen::Index last = n - 1;
-    model.position(last) = model.wall_position - model.radius(last) + overlap(model.laws.size() - 1);
-    for (Eigen::Index i = last - 1; i >= first_bead; --i)
-      model.position(i) = model.position(i + 1) - model.radius(i) - model.radius(i + 1) + overlap(std::size_t(i));
-    if (left) model.position(0) = model.position(1) - model.radius(0) - model.radius(1) - left->gap;
-  }
+  if (scene.precompression > 0.0) precompress(model, scene);
   model.W.resize(n, Eigen::Index(model.laws.size()));
   model.W.setFromTriplets(gradients.begin(), gradients.end());
   model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
@@ -156,6 +175,20 @@ double natural_impulse(const ChainModel& model) {
   for (Eigen::Index i = 0; i < model.body_count(); ++i)
     if (model.velocity(i) != 0.0) smallest = std::min(smallest, model.mass(i) * std::abs(model.velocity(i)));
   return smallest;
+}
+
+void check_delta_p(const ChainModel& model, double delta_p, std::int64_t max_steps,
+                   const std::string& field) {
+  const double impulse = natural_impulse(model);
+  if (!(delta_p > 0.0 && delta_p < impulse))
+    throw InvalidInput(invalid_value_message(field, delta_p,
+                                             "0 < delta_p < the striker's momentum m V = " +
+                                                 to_text(impulse) + " N s (best <= 1e-3 m V)"));
+  if (impulse / delta_p > double(max_steps))
+    throw InvalidInput(invalid_value_message(
+        field, delta_p,
+        ">= m V / max_steps = " + to_text(impulse / double(max_steps)) +
+            " N s: the impact takes at least m V / delta_p impulse steps"));
 }
 
 double contact_position(const ChainModel& model, Eigen::Index contact) {

@@ -1,6 +1,7 @@
 #include "mimpact/chain/chain_scene.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <initializer_list>
@@ -20,7 +21,7 @@ class ObjectReader {
  public:
   ObjectReader(const json& object, std::string path, const std::string& source)
       : object_(object), path_(std::move(path)), source_(source) {
-    if (!object_.is_object()) fail(path_ + " is " + std::string(object_.type_name()) +
+    if (!object_.is_object()) fail(name() + " is " + std::string(object_.type_name()) +
                                    "; allowed: an object {...}");
   }
 
@@ -31,7 +32,7 @@ class ObjectReader {
       if (!known) {
         std::string allowed;
         for (std::string_view key : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(key);
-        fail("unknown key \"" + item.key() + "\" in " + path_ + "; allowed: " + allowed);
+        fail("unknown key \"" + item.key() + "\" in " + name() + "; allowed: " + allowed);
       }
     }
   }
@@ -73,12 +74,17 @@ class ObjectReader {
   [[noreturn]] void fail(const std::string& what) const { throw InvalidInput(source_ + ": " + what); }
 
  private:
+  std::string name() const { return path_.empty() ? "the top level" : path_; }
+
   const json& object_;
   std::string path_;
   const std::string& source_;
 };
 
 bool positive(double x) { return x > 0.0; }
+
+// rows of forces.csv a compliant run may write: 1e8 rows of a few contacts are gigabytes
+constexpr double kMaxRecordedSamples = 1e8;
 
 Material read_material(const ObjectReader& parent, const std::string& key,
                        const std::string& source) {
@@ -144,10 +150,11 @@ std::vector<int> read_indices(const ObjectReader& reader, const std::string& key
   if (!list.is_array()) reader.fail(reader.field(key) + " must be an array of " + what + " indices");
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string field = reader.field(key) + "[" + std::to_string(k) + "]";
-    if (!list[k].is_number_integer() || list[k].get<int>() < 0 || list[k].get<int>() >= count)
+    // read wide: a narrowing read would wrap 4294967296 to a valid index
+    if (!list[k].is_number_integer() || list[k].get<std::int64_t>() < 0 || list[k].get<std::int64_t>() >= count)
       reader.fail(field + " = " + list[k].dump() + " is invalid; allowed: a " + what +
                   " index in [0, " + std::to_string(count) + ")");
-    indices.push_back(list[k].get<int>());
+    indices.push_back(int(list[k].get<std::int64_t>()));
   }
   return indices;
 }
@@ -165,7 +172,8 @@ ContactSpec read_contact(const ObjectReader& scene, const std::string& source) {
                   "\" is invalid; allowed: \"bi-stiffness\", \"mono-stiffness\"");
     contact.model = *parsed;
   }
-  contact.exponent = reader.number_or("exponent", 1.5, positive, "> 0 (3/2 for Hertz)");
+  contact.exponent = reader.number_or("exponent", 1.5, [](double x) { return x > 0.0 && x <= 10.0; },
+                                      "0 < eta <= 10 (1 linear, 3/2 Hertz)");
   contact.restitution = reader.number_or("restitution", 1.0,
                                          [](double x) { return x >= 0.0 && x <= 1.0; },
                                          "0 <= e <= 1");
@@ -173,7 +181,7 @@ ContactSpec read_contact(const ObjectReader& scene, const std::string& source) {
     contact.stiffness = reader.number("stiffness", positive, "> 0 (N/m^exponent)");
   else if (contact.exponent != 1.5)
     reader.fail("missing field contact.stiffness: the Hertz stiffness holds for exponent 1.5 "
-                "only, and contact.exponent = " + std::to_string(contact.exponent));
+                "only, and contact.exponent = " + to_text(contact.exponent));
   return contact;
 }
 
@@ -256,8 +264,10 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
   if (scene.has("compliant")) {
     ObjectReader compliant(scene.at("compliant"), "compliant", source);
     compliant.allow_only({"tolerance", "end_time"});
+    // below 1e-14 the error estimate of Dormand-Prince drowns in round-off: the run never ends
     result.compliant.tolerance = compliant.number_or(
-        "tolerance", result.compliant.tolerance, [](double x) { return x > 0.0 && x < 1.0; }, "in (0, 1)");
+        "tolerance", result.compliant.tolerance, [](double x) { return x >= 1e-14 && x < 1.0; },
+        "1e-14 <= tolerance < 1");
     if (compliant.has("end_time")) result.compliant.end_time = compliant.number("end_time", positive, "> 0 (s)");
   }
   result.precompression = scene.number_or("precompression", 0.0, [](double x) { return x >= 0.0; }, ">= 0 (N)");
@@ -269,6 +279,13 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
     if (!result.compliant.end_time)
       scene.fail("missing field compliant.end_time: a precompressed chain never comes apart, so the run needs an end");
   }
+  const double samples = result.compliant.end_time.value_or(1.0) / result.record.interval;
+  if (result.method == Method::compliant && (!result.record.contacts.empty() || !result.record.bodies.empty()) &&
+      samples > kMaxRecordedSamples)
+    scene.fail(invalid_value_message("record.interval", result.record.interval,
+                                     ">= compliant.end_time / " + to_text(kMaxRecordedSamples) + " = " +
+                                         to_text(result.compliant.end_time.value_or(1.0) / kMaxRecordedSamples) +
+                                         " s (at most " + to_text(kMaxRecordedSamples) + " rows)"));
   return result;
 }
 
@@ -292,6 +309,9 @@ numerics::LzbOptions ChainScene::lzb_options(double step) const {
 }
 
 ChainScene load_chain_scene(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw InvalidInput(path.string() + ": is a directory; allowed: a scene file (JSON)");
   std::ifstream in(path);
   if (!in) throw InvalidInput(path.string() + ": cannot open the scene file for reading");
   std::ostringstream text;

@@ -6,7 +6,7 @@
 
 namespace mimpact::numerics {
 
-// How a Lemke run ended.
+// How a Lemke run ended. No "cycling": the lexicographic ratio test never revisits a basis.
 enum class LemkeStatus {
   solved,           // z verifies: complementarity_error <= options.acceptance_tolerance
   ray_termination,  // the entering column had no positive entry: no solution was reached

@@ -20,6 +20,9 @@ struct ChainImpact {
   Eigen::VectorXd velocity_after;  // per body (m/s), after the last impact
   double impact_time = 0.0;        // s, when the first impact began
   double wall_time = 0.0;          // s spent in the impact computations
+  // compliant method, free chain: compliant.end_time came with contacts still closed, so the
+  // velocities are those at that time, not the chain's final ones (summary status "end_time")
+  bool cut_by_end_time = false;
   // per impact, in order: when it began (s) and the body velocities just before it
   std::vector<double> impact_times;
   std::vector<Eigen::VectorXd> velocities_before;
