@@ -65,6 +65,49 @@ void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
                delta_p, share, natural_impulse, 100.0 * share);
 }
 
+// The LZB impact with the recorder and, on a terminal, the progress report as observers.
+chain::ChainImpact run_lzb(const chain::ChainScene& scene, const chain::ChainModel& model, double delta_p,
+                           const std::string& delta_p_field, bool writes_series, bool quiet,
+                           chain::ChainTimeSeries& series) {
+  numerics::LzbOptions options = scene.lzb_options(delta_p);
+  chain::check_delta_p(model, delta_p, options.max_steps, delta_p_field);
+  std::string why;
+  if (!options.is_valid(&why)) throw InvalidInput(why);
+  warn_if_coarse(delta_p, chain::natural_impulse(model), quiet);
+  chain::ChainRecorder recorder(model, scene.record);
+  ProgressReporter progress;
+  Observers observers;
+  if (writes_series) {
+    recorder.configure(options);
+    observers.add(recorder);
+  }
+  if (!quiet && isatty(STDERR_FILENO)) {
+    if (observers.empty()) {
+      options.sample_every = 2'000'000;
+      options.sampled_contacts = {0};
+    }
+    observers.add(progress);
+  }
+  chain::ChainImpact impact = chain::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
+  if (writes_series) series = recorder.series(impact);
+  return impact;
+}
+
+// summary.json on stdout, or with the time series into `out_dir`, complete or not at all.
+void write_results(const nlohmann::ordered_json& summary, const chain::ChainTimeSeries* series,
+                   const std::string& out_dir) {
+  if (out_dir.empty()) {
+    std::cout << summary.dump(2) << "\n";
+    return;
+  }
+  std::map<std::string, std::string> files{{"summary.json", summary.dump(2) + "\n"}};
+  if (series) {
+    if (!series->contacts.empty()) files["forces.csv"] = series->forces_csv();
+    if (!series->bodies.empty()) files["velocities.csv"] = series->velocities_csv();
+  }
+  write_output_directory(out_dir, files, {"summary.json", "forces.csv", "velocities.csv"});
+}
+
 }  // namespace
 
 int chain_command(const std::vector<std::string>& arguments) {
@@ -108,38 +151,20 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (recording && out_dir.empty() && !quiet)
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
   const bool writes_series = recording && !out_dir.empty();
+
   chain::ChainImpact impact;
   chain::ChainTimeSeries series;
-  if (scene.method == chain::Method::compliant) {
+  if (lzb) {
+    impact = run_lzb(scene, model, *delta_p, delta_p_option ? "--delta-p" : "impact.delta_p", writes_series,
+                     quiet, series);
+  } else {
     chain::CompliantChainRun run = chain::simulate_chain_compliant(model, scene.compliant, scene.record);
     impact = std::move(run.impact);
     series = std::move(run.series);
-  } else {
-    numerics::LzbOptions options = scene.lzb_options(*delta_p);
-    chain::check_delta_p(model, *delta_p, options.max_steps, delta_p_option ? "--delta-p" : "impact.delta_p");
-    std::string why;
-    if (!options.is_valid(&why)) throw InvalidInput(why);
-    warn_if_coarse(*delta_p, chain::natural_impulse(model), quiet);
-    chain::ChainRecorder recorder(model, scene.record);
-    ProgressReporter progress;
-    Observers observers;
-    if (writes_series) {
-      recorder.configure(options);
-      observers.add(recorder);
-    }
-    if (!quiet && isatty(STDERR_FILENO)) {
-      if (observers.empty()) {
-        options.sample_every = 2'000'000;
-        options.sampled_contacts = {0};
-      }
-      observers.add(progress);
-    }
-    impact = chain::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
-    if (writes_series) series = recorder.series(impact);
   }
   nlohmann::ordered_json summary =
       chain::chain_summary(model, impact, delta_p, writes_series ? &series : nullptr);
-  summary["method"] = scene.method == chain::Method::compliant ? "compliant" : "lzb";
+  summary["method"] = lzb ? "lzb" : "compliant";
   if (study) summary["convergence"] = convergence_json(*study);
 
   if (!quiet)
@@ -148,16 +173,7 @@ int chain_command(const std::vector<std::string>& arguments) {
     throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
   if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite() && std::isfinite(impact.lzb.duration)))
     throw Error(scene_file + ": the run produced a non-finite velocity, force or duration; no output written");
-  if (out_dir.empty()) {
-    std::cout << summary.dump(2) << "\n";
-  } else {
-    std::map<std::string, std::string> files{{"summary.json", summary.dump(2) + "\n"}};
-    if (writes_series) {
-      if (!series.contacts.empty()) files["forces.csv"] = series.forces_csv();
-      if (!series.bodies.empty()) files["velocities.csv"] = series.velocities_csv();
-    }
-    write_output_directory(out_dir, files, {"summary.json", "forces.csv", "velocities.csv"});
-  }
+  write_results(summary, writes_series ? &series : nullptr, out_dir);
   return 0;
 }
 

@@ -20,11 +20,17 @@ bool CompliantOptions::is_valid(std::string* why) const {
     if (why) *why = text;
     return false;
   };
-  if (!(absolute_tolerance > 0.0)) return fail(invalid_value_message("absolute_tolerance", absolute_tolerance, "> 0"));
-  if (!(relative_tolerance > 0.0)) return fail(invalid_value_message("relative_tolerance", relative_tolerance, "> 0"));
-  if (!(max_step >= 0.0)) return fail(invalid_value_message("max_step", max_step, ">= 0 (s, 0 for none)"));
-  if (!(event_tolerance > 0.0)) return fail(invalid_value_message("event_tolerance", event_tolerance, "> 0 (s)"));
+  auto finite_positive = [](double x) { return x > 0.0 && std::isfinite(x); };
+  if (!finite_positive(absolute_tolerance))
+    return fail(invalid_value_message("absolute_tolerance", absolute_tolerance, "a finite value > 0"));
+  if (!finite_positive(relative_tolerance))
+    return fail(invalid_value_message("relative_tolerance", relative_tolerance, "a finite value > 0"));
+  if (!(max_step >= 0.0 && std::isfinite(max_step)))
+    return fail(invalid_value_message("max_step", max_step, "a finite value >= 0 (s, 0 for none)"));
+  if (!finite_positive(event_tolerance))
+    return fail(invalid_value_message("event_tolerance", event_tolerance, "a finite value > 0 (s)"));
   if (samples_per_step < 1) return fail(invalid_value_message("samples_per_step", samples_per_step, ">= 1"));
+  if (max_steps < 1) return fail(invalid_value_message("max_steps", double(max_steps), "an integer >= 1"));
   return true;
 }
 
@@ -50,9 +56,18 @@ struct CompliantIntegrator::State {
   std::vector<double> gap, rate, gap_next, rate_next;
   // the round-off of each gap (m): a crossing within it is noise, not a contact event
   std::vector<double> gap_noise;
+  std::vector<double> gap_probe, rate_probe;  // scratch of the root finder and the open test
   bool started = false;
-  double last_step = 1e-7;
+  double last_step = 1e-7;  // s: the step the integration restarts with after an event
+  std::int64_t steps = 0;   // time steps taken since initialize()
 };
+
+namespace {
+
+// What ends a segment of the integration at a contact.
+enum class EventKind { none, closing, opening, turning };
+
+}  // namespace
 
 CompliantIntegrator::CompliantIntegrator(CompliantOptions options) : options_(options) {
   std::string why;
@@ -63,13 +78,14 @@ CompliantIntegrator::~CompliantIntegrator() = default;
 
 std::unique_ptr<kernel::OneStepIntegrator> CompliantIntegrator::create(const kernel::Parameters& parameters) {
   parameters.allow_only("integrator \"compliant\"", {"absolute_tolerance", "relative_tolerance", "max_step",
-                                                      "event_tolerance", "samples_per_step"});
+                                                      "event_tolerance", "samples_per_step", "max_steps"});
   CompliantOptions o;
   o.absolute_tolerance = parameters.get("absolute_tolerance", o.absolute_tolerance);
   o.relative_tolerance = parameters.get("relative_tolerance", o.relative_tolerance);
   o.max_step = parameters.get("max_step", o.max_step);
   o.event_tolerance = parameters.get("event_tolerance", o.event_tolerance);
   o.samples_per_step = int(parameters.get_integer("samples_per_step", o.samples_per_step, 1, 1'000'000));
+  o.max_steps = parameters.get_integer("max_steps", o.max_steps, 1, std::int64_t(1) << 62);
   return std::make_unique<CompliantIntegrator>(o);
 }
 
@@ -109,7 +125,7 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
   std::copy(q.data(), q.data() + s.n, s.y.begin());
   std::copy(v.data(), v.data() + s.n, s.y.begin() + s.n);
   s.gap.resize(std::size_t(s.m));
-  s.rate = s.gap_next = s.rate_next = s.gap;
+  s.rate = s.gap_next = s.rate_next = s.gap_probe = s.rate_probe = s.gap;
   // a contact that starts compressed (a static load) starts on its loading curve
   max_compression_.assign(std::size_t(s.m), 0.0);
   force_.assign(std::size_t(s.m), 0.0);
@@ -136,7 +152,7 @@ double CompliantIntegrator::contact_force(std::size_t j, double delta) const {
 }
 
 void CompliantIntegrator::gaps(const double* q, const double* v, std::vector<double>& gap,
-                               std::vector<double>& rate) {
+                               std::vector<double>& rate) const {
   State& s = *state_;
   const Eigen::Map<const VectorXd> qs(q, s.n), vs(v, s.n);
   if (s.linear) {
@@ -203,6 +219,15 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
       const auto [from, to] = s.dense.do_step(rhs);
       s.last_step = to - from;
       ++report.smooth_steps;
+      if (++s.steps > options_.max_steps)
+        throw Error("compliant integrator: max_steps = " + std::to_string(options_.max_steps) +
+                    " time steps taken by t = " + to_text(to) +
+                    " s; the contacts' time scale is below what the tolerance and double precision "
+                    "resolve (check the speeds and stiffnesses, or loosen the tolerance)");
+      const State::Vector& now = s.dense.current_state();
+      if (!std::all_of(now.begin(), now.end(), [](double x) { return std::isfinite(x); }))
+        throw Error("compliant integrator: the state is not finite at t = " + to_text(to) +
+                    " s; speeds, forces or stiffnesses are out of the range double precision carries");
       continue;
     }
     const double a = time_, b = std::min(s.dense.current_time(), target);
@@ -215,7 +240,7 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
     estimate_gap_noise();
     double t_previous = a, event_time = INFINITY;
     Index event_contact = -1;
-    int event_kind = 0;  // 1 closing, 2 opening, 3 turning
+    EventKind event_kind = EventKind::none;
     for (int k = 1; k <= options_.samples_per_step && event_contact < 0; ++k) {
       const double t = k == options_.samples_per_step ? b : a + (b - a) * k / options_.samples_per_step;
       at(t, s.gap_next, s.rate_next);
@@ -223,33 +248,32 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
         const std::size_t i = std::size_t(j);
         auto gap_of = [&](double x) {
           s.dense.calc_state(x, s.probe);
-          std::vector<double> g(s.gap.size()), u(s.gap.size());
-          gaps(s.probe.data(), s.probe.data() + s.n, g, u);
-          return std::pair{g[i], u[i]};
+          gaps(s.probe.data(), s.probe.data() + s.n, s.gap_probe, s.rate_probe);
+          return std::pair{s.gap_probe[i], s.rate_probe[i]};
         };
-        int kind = 0;
+        EventKind kind = EventKind::none;
         double lower = t_previous, upper = t, f_lower = 0.0, f_upper = 0.0;
         std::function<double(double)> f;
         // touching bodies at rest (behind a wave) see their gap flicker around 0 in round-off:
         // such a crossing moves no force worth a restart
         const bool gap_moved = std::max(std::abs(s.gap[i]), std::abs(s.gap_next[i])) > s.gap_noise[i];
         if (gap_moved && s.gap[i] > 0.0 && s.gap_next[i] <= 0.0) {
-          kind = 1;
+          kind = EventKind::closing;
           f = [&](double x) { return gap_of(x).first; };
           f_lower = s.gap[i];
           f_upper = s.gap_next[i];
         } else if (gap_moved && s.gap[i] <= 0.0 && s.gap_next[i] > 0.0) {
-          kind = 2;
+          kind = EventKind::opening;
           f = [&](double x) { return -gap_of(x).first; };
           f_lower = -s.gap[i];
           f_upper = -s.gap_next[i];
         } else if (s.gap[i] < -s.gap_noise[i] && s.rate[i] < 0.0 && s.rate_next[i] >= 0.0) {
-          kind = 3;
+          kind = EventKind::turning;
           f = [&](double x) { return -gap_of(x).second; };
           f_lower = -s.rate[i];
           f_upper = -s.rate_next[i];
         }
-        if (!kind) continue;
+        if (kind == EventKind::none) continue;
         const numerics::Bracket bracket =
             numerics::narrow_crossing(f, lower, upper, f_lower, f_upper, options_.event_tolerance);
         // an event at the start of the segment is the one just handled, seen again through
@@ -273,13 +297,13 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
       const std::size_t i = std::size_t(event_contact);
       std::vector<double> g(std::size_t(s.m)), u(std::size_t(s.m));
       gaps(s.y.data(), s.y.data() + s.n, g, u);
-      if (event_kind == 2) max_compression_[i] = 0.0;  // open: the contact forgets
-      if (event_kind == 3) max_compression_[i] = std::max(max_compression_[i], -g[i]);
+      if (event_kind == EventKind::opening) max_compression_[i] = 0.0;  // the contact forgets
+      if (event_kind == EventKind::turning) max_compression_[i] = std::max(max_compression_[i], -g[i]);
       restart();
       report.time = time_;
-      report.event = event_kind != 3;
-      (event_kind == 1 ? report.closing : report.detaching).push_back(event_contact);
-      if (event_kind != 3) break;
+      report.event = event_kind != EventKind::turning;
+      (event_kind == EventKind::closing ? report.closing : report.detaching).push_back(event_contact);
+      if (event_kind != EventKind::turning) break;
       continue;
     }
     if (end >= target) break;
@@ -321,11 +345,10 @@ void CompliantIntegrator::account_segment_end() {
 }
 
 bool CompliantIntegrator::contacts_open() const {
-  const State& s = *state_;
-  std::vector<double> g(std::size_t(s.m)), u(std::size_t(s.m));
-  const_cast<CompliantIntegrator*>(this)->gaps(s.y.data(), s.y.data() + s.n, g, u);
-  for (std::size_t j = 0; j < g.size(); ++j)
-    if (g[j] <= 0.0 || u[j] < 0.0) return false;
+  State& s = *state_;
+  gaps(s.y.data(), s.y.data() + s.n, s.gap_probe, s.rate_probe);
+  for (std::size_t j = 0; j < s.gap_probe.size(); ++j)
+    if (s.gap_probe[j] <= 0.0 || s.rate_probe[j] < 0.0) return false;
   return true;
 }
 

@@ -26,7 +26,8 @@ struct Collision {
 };
 
 // Two bodies on a line, the first at `speed` towards the second, touching at t = 0.
-Collision collide(double m1, double m2, double speed, numerics::ContactLaw law) {
+Collision collide(double m1, double m2, double speed, numerics::ContactLaw law,
+                  const CompliantOptions& options = {}) {
   auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
   kernel::LagrangianLinearTIDS::Matrices a, b;
   a.mass = Eigen::MatrixXd::Constant(1, 1, m1);
@@ -40,7 +41,7 @@ Collision collide(double m1, double m2, double speed, numerics::ContactLaw law) 
   system->add(std::make_shared<kernel::Interaction>(
       first, second, std::make_shared<kernel::LinearRelation>(Eigen::RowVector2d(-1, 1), -0.02),
       std::make_shared<LzbLaw>(law), "c"));
-  auto integrator = std::make_unique<CompliantIntegrator>();
+  auto integrator = std::make_unique<CompliantIntegrator>(options);
   CompliantIntegrator& compliant = *integrator;
   kernel::Simulation simulation(system, std::move(integrator), std::make_unique<LzbImpactProblem>(),
                                 std::make_unique<AccelerationLcpProblem>());
@@ -91,6 +92,23 @@ TEST(CompliantIntegrator, HystereticContactRestoresEnergeticRestitution) {
     const Collision collision = collide(0.02, 0.05, 0.7, law);
     EXPECT_NEAR(collision.separation_speed, e * 0.7, 1e-8) << "e " << e;
   }
+}
+
+// A run that needs more time steps than max_steps is stopped with an error naming the limit,
+// not left to run (a striker at 1e300 m/s needs steps of 1e-103 s).
+TEST(CompliantIntegrator, StepLimitEndsTheRunWithAnError) {
+  numerics::ContactLaw law;
+  law.stiffness = 1e10;
+  CompliantOptions options;
+  options.max_steps = 20;
+  try {
+    collide(0.03, 0.03, 1.0, law, options);
+    ADD_FAILURE() << "a Hertz collision in 20 steps at tolerance 1e-10";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("max_steps = 20 time steps taken"), std::string::npos) << error.what();
+  }
+  options.max_steps = 0;
+  EXPECT_THROW(CompliantIntegrator{options}, InvalidInput);
 }
 
 TEST(CompliantIntegrator, MonoStiffnessWithDissipationIsRefused) {

@@ -183,11 +183,9 @@ CompliantChainRun simulate_chain_compliant(const ChainModel& model, const Compli
   watch.integrator = &integrator;
   watch.record = &record;
   watch.precompressed = model.precompression > 0.0;
-  for (Eigen::Index j = 0; j < model.contact_count(); ++j)
-    if (model.u_minus(j) < 0.0 && std::abs(model.W.col(j).dot(model.position) -
-                                           (j + 1 < model.body_count() ? model.radius(j) + model.radius(j + 1)
-                                                                       : 0.0)) < 1e-15)
-      watch.first_contact = 0.0;  // a striker touching at t = 0: the impact starts at once
+  // a striker with no gap touches at t = 0: the impact starts at once, with no closing event
+  if (std::find(model.striker_arrivals.begin(), model.striker_arrivals.end(), 0.0) != model.striker_arrivals.end())
+    watch.first_contact = 0.0;
   watch.series.contacts = record.contacts;
   watch.series.bodies = record.bodies;
   simulation.add_observer(watch);

@@ -185,6 +185,75 @@ ContactSpec read_contact(const ObjectReader& scene, const std::string& source) {
   return contact;
 }
 
+// "impact": the LZB method's delta_p and fixed thresholds.
+void read_impact(const ObjectReader& scene, const std::string& source, ChainScene& result) {
+  if (!scene.has("impact")) return;
+  ObjectReader impact(scene.at("impact"), "impact", source);
+  impact.allow_only({"delta_p", "fixed_thresholds"});
+  if (impact.has("delta_p")) result.delta_p = impact.number("delta_p", positive, "> 0 (N s)");
+  if (impact.has("fixed_thresholds")) {
+    ObjectReader fixed(impact.at("fixed_thresholds"), "impact.fixed_thresholds", source);
+    fixed.allow_only({"velocity", "energy"});
+    result.fixed_thresholds = numerics::LzbOptions::FixedThresholds{
+        fixed.number("velocity", positive, "> 0 (m/s)"), fixed.number("energy", positive, "> 0 (J)")};
+  }
+}
+
+// "record": the contacts and bodies written as time series, and how often.
+void read_record(const ObjectReader& scene, const std::string& source, ChainScene& result) {
+  if (!scene.has("record")) return;
+  ObjectReader record(scene.at("record"), "record", source);
+  record.allow_only({"contacts", "bodies", "every", "interval"});
+  result.record.contacts = read_indices(record, "contacts", result.contact_count(), "contact");
+  result.record.bodies = read_indices(record, "bodies", result.body_count(), "body");
+  result.record.every = int(record.number_or(
+      "every", 1, [](double x) { return x >= 1 && x == std::floor(x) && x < 2e9; },
+      "an integer >= 1 (impulse steps)"));
+  result.record.interval = record.number_or("interval", result.record.interval, positive, "> 0 (s)");
+}
+
+// "method" and the compliant method's "compliant" settings; needs "record" read first.
+void read_method(const ObjectReader& scene, const std::string& source, ChainScene& result) {
+  if (scene.has("method")) {
+    const std::string method = scene.text("method");
+    if (method == "lzb") {
+      result.method = Method::lzb;
+    } else if (method == "compliant") {
+      result.method = Method::compliant;
+    } else {
+      scene.fail("method = \"" + method + "\" is invalid; allowed: \"lzb\", \"compliant\"");
+    }
+  }
+  if (scene.has("compliant")) {
+    ObjectReader compliant(scene.at("compliant"), "compliant", source);
+    compliant.allow_only({"tolerance", "end_time"});
+    // below 1e-14 the error estimate of Dormand-Prince drowns in round-off: the run never ends
+    result.compliant.tolerance = compliant.number_or(
+        "tolerance", result.compliant.tolerance, [](double x) { return x >= 1e-14 && x < 1.0; },
+        "1e-14 <= tolerance < 1");
+    if (compliant.has("end_time")) result.compliant.end_time = compliant.number("end_time", positive, "> 0 (s)");
+  }
+  const double end_time = result.compliant.end_time.value_or(1.0);
+  const bool recording = !result.record.contacts.empty() || !result.record.bodies.empty();
+  if (result.method == Method::compliant && recording && end_time / result.record.interval > kMaxRecordedSamples)
+    scene.fail(invalid_value_message("record.interval", result.record.interval,
+                                     ">= compliant.end_time / " + to_text(kMaxRecordedSamples) + " = " +
+                                         to_text(end_time / kMaxRecordedSamples) + " s (at most " +
+                                         to_text(kMaxRecordedSamples) + " rows)"));
+}
+
+// "precompression": a static force that only the compliant method, with a wall, can hold.
+void read_precompression(const ObjectReader& scene, ChainScene& result) {
+  result.precompression = scene.number_or("precompression", 0.0, [](double x) { return x >= 0.0; }, ">= 0 (N)");
+  if (result.precompression == 0.0) return;
+  if (result.method != Method::compliant)
+    scene.fail("precompression = " + to_text(result.precompression) +
+               " N needs method \"compliant\": the LZB impact starts from beads that barely touch");
+  if (!result.wall) scene.fail("precompression needs a wall for the chain to be pressed against");
+  if (!result.compliant.end_time)
+    scene.fail("missing field compliant.end_time: a precompressed chain never comes apart, so the run needs an end");
+}
+
 }  // namespace
 
 ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
@@ -230,62 +299,10 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
   }
 
   result.contact = read_contact(scene, source);
-  if (scene.has("impact")) {
-    ObjectReader impact(scene.at("impact"), "impact", source);
-    impact.allow_only({"delta_p", "fixed_thresholds"});
-    if (impact.has("delta_p")) result.delta_p = impact.number("delta_p", positive, "> 0 (N s)");
-    if (impact.has("fixed_thresholds")) {
-      ObjectReader fixed(impact.at("fixed_thresholds"), "impact.fixed_thresholds", source);
-      fixed.allow_only({"velocity", "energy"});
-      result.fixed_thresholds = numerics::LzbOptions::FixedThresholds{
-          fixed.number("velocity", positive, "> 0 (m/s)"), fixed.number("energy", positive, "> 0 (J)")};
-    }
-  }
-  if (scene.has("record")) {
-    ObjectReader record(scene.at("record"), "record", source);
-    record.allow_only({"contacts", "bodies", "every", "interval"});
-    result.record.contacts = read_indices(record, "contacts", result.contact_count(), "contact");
-    result.record.bodies = read_indices(record, "bodies", result.body_count(), "body");
-    result.record.every = int(record.number_or(
-        "every", 1, [](double x) { return x >= 1 && x == std::floor(x) && x < 2e9; },
-        "an integer >= 1 (impulse steps)"));
-    result.record.interval = record.number_or("interval", result.record.interval, positive, "> 0 (s)");
-  }
-  if (scene.has("method")) {
-    const std::string method = scene.text("method");
-    if (method == "lzb") {
-      result.method = Method::lzb;
-    } else if (method == "compliant") {
-      result.method = Method::compliant;
-    } else {
-      scene.fail("method = \"" + method + "\" is invalid; allowed: \"lzb\", \"compliant\"");
-    }
-  }
-  if (scene.has("compliant")) {
-    ObjectReader compliant(scene.at("compliant"), "compliant", source);
-    compliant.allow_only({"tolerance", "end_time"});
-    // below 1e-14 the error estimate of Dormand-Prince drowns in round-off: the run never ends
-    result.compliant.tolerance = compliant.number_or(
-        "tolerance", result.compliant.tolerance, [](double x) { return x >= 1e-14 && x < 1.0; },
-        "1e-14 <= tolerance < 1");
-    if (compliant.has("end_time")) result.compliant.end_time = compliant.number("end_time", positive, "> 0 (s)");
-  }
-  result.precompression = scene.number_or("precompression", 0.0, [](double x) { return x >= 0.0; }, ">= 0 (N)");
-  if (result.precompression > 0.0) {
-    if (result.method != Method::compliant)
-      scene.fail("precompression = " + to_text(result.precompression) +
-                 " N needs method \"compliant\": the LZB impact starts from beads that barely touch");
-    if (!result.wall) scene.fail("precompression needs a wall for the chain to be pressed against");
-    if (!result.compliant.end_time)
-      scene.fail("missing field compliant.end_time: a precompressed chain never comes apart, so the run needs an end");
-  }
-  const double samples = result.compliant.end_time.value_or(1.0) / result.record.interval;
-  if (result.method == Method::compliant && (!result.record.contacts.empty() || !result.record.bodies.empty()) &&
-      samples > kMaxRecordedSamples)
-    scene.fail(invalid_value_message("record.interval", result.record.interval,
-                                     ">= compliant.end_time / " + to_text(kMaxRecordedSamples) + " = " +
-                                         to_text(result.compliant.end_time.value_or(1.0) / kMaxRecordedSamples) +
-                                         " s (at most " + to_text(kMaxRecordedSamples) + " rows)"));
+  read_impact(scene, source, result);
+  read_record(scene, source, result);
+  read_method(scene, source, result);
+  read_precompression(scene, result);
   return result;
 }
 
@@ -301,9 +318,9 @@ const StrikerSpec* ChainScene::striker(Side side) const {
   return nullptr;
 }
 
-numerics::LzbOptions ChainScene::lzb_options(double step) const {
+numerics::LzbOptions ChainScene::lzb_options(double impulse_step) const {
   numerics::LzbOptions options;
-  options.delta_p = step;
+  options.delta_p = impulse_step;
   options.fixed_thresholds = fixed_thresholds;
   return options;
 }

@@ -38,7 +38,7 @@ struct PrecompressedWave {
   double sound_speed;   // c_s (m/s)
   double strain_ratio;  // psi_m / psi_inf
   double y_infinity;    // in (0, (2/3)^(5/2)]
-  double y_max;
+  double y_max;         // y_m, the turning point of the orbit from y_infinity (eq. 11)
 };
 PrecompressedWave precompressed_solitary_wave(const BeadChain& chain, double peak_force,
                                               double static_force, ForceSite site);

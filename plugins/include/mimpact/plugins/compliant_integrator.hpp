@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ struct CompliantOptions {
   double max_step = 0.0;              // s; 0 for no limit
   double event_tolerance = 1e-13;     // s: contacts open, close and turn at located times
   int samples_per_step = 4;           // interior samples searched for those events
+  // The run is abandoned with an error past this many time steps: a 3 000-bead chain takes
+  // 9e4, so 1e7 only stops a run whose scales double precision cannot resolve.
+  std::int64_t max_steps = 10'000'000;
   bool is_valid(std::string* why) const;
 };
 
@@ -55,7 +59,8 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
  private:
   struct State;
   void evaluate(double t, const double* y, double* dydt);
-  void gaps(const double* q, const double* v, std::vector<double>& gap, std::vector<double>& rate);
+  // gaps (m) and normal velocities (m/s) of every contact at (q, v); works in state_'s buffers
+  void gaps(const double* q, const double* v, std::vector<double>& gap, std::vector<double>& rate) const;
   double contact_force(std::size_t j, double delta) const;
   void restart();
   // the round-off of each gap at the start of a segment

@@ -83,8 +83,8 @@ struct ChainScene {
   int body_count() const { return bead_count() + int(strikers.size()); }
   int contact_count() const { return body_count() - 1 + (wall ? 1 : 0); }
   const StrikerSpec* striker(Side side) const;
-  // The LZB integrator's options for this scene at delta_p = step (N s)
-  numerics::LzbOptions lzb_options(double step) const;
+  // The LZB integrator's options for this scene at delta_p = impulse_step (N s)
+  numerics::LzbOptions lzb_options(double impulse_step) const;
 };
 
 // Parses and validates a scene (JSON, comments allowed). Throws InvalidInput naming the
