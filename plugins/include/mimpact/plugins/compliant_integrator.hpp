@@ -17,8 +17,9 @@ struct CompliantOptions {
   double max_step = 0.0;              // s; 0 for no limit
   double event_tolerance = 1e-13;     // s: contacts open, close and turn at located times
   int samples_per_step = 4;           // interior samples searched for those events
-  // The run is abandoned with an error past this many time steps: a 3 000-bead chain takes
-  // 9e4, so 1e7 only stops a run whose scales double precision cannot resolve.
+  // The run is abandoned with an error past this many time steps: the largest run of
+  // docs/performance.md takes 8.9e4, so 1e7 only stops runs whose scales double precision
+  // cannot resolve.
   std::int64_t max_steps = 10'000'000;
   bool is_valid(std::string* why) const;
 };
