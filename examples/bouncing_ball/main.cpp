@@ -10,33 +10,12 @@
 
 using namespace mimpact;
 
-namespace {
-
-class Bounces : public kernel::SimulationObserver {
- public:
-  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
-    times.push_back(report.time);
-    heights.push_back(simulation.system().system(0).position()(0));
-    speeds.push_back(report.velocity_after(0));
-  }
-  void on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
-    if (step.contact_forces && step.contact_forces->force.size() && rest_force < 0) {
-      rest_force = step.contact_forces->force(0);
-      rest_time = step.contact_forces->time;
-    }
-  }
-  std::vector<double> times, heights, speeds;
-  double rest_force = -1.0, rest_time = 0.0;
-};
-
-}  // namespace
-
 int main() {
   const models::BouncingBall ball;
   models::SimulationSetup setup;
   setup.impacts.relative_delta_p = ball.relative_delta_p;
   kernel::Simulation simulation = models::make_simulation(ball.build(), setup);
-  Bounces bounces;
+  models::BounceRecord bounces;
   simulation.add_observer(bounces);
   const kernel::RunSummary summary = simulation.run(0.0, 5.0);
 
@@ -51,8 +30,11 @@ int main() {
                 apex, ball.radius + outgoing * outgoing / (2.0 * g));
     expected_time += 2.0 * outgoing / g;
   }
-  std::printf("%zu impacts; at rest from t = %.6f s with floor force %.6f N (m g = %.6f N)\n",
-              bounces.times.size(), bounces.rest_time, bounces.rest_force, ball.mass() * g);
+  if (bounces.resting)
+    std::printf("%zu impacts; at rest from t = %.6f s with floor force %.6f N (m g = %.6f N)\n",
+                bounces.times.size(), bounces.resting->time, bounces.resting->force(0), ball.mass() * g);
+  else
+    std::printf("%zu impacts; not at rest by the end of the run\n", bounces.times.size());
   std::printf("%lld events, %lld smooth steps, %.3f s of computation\n", (long long)summary.events,
               (long long)summary.smooth_steps, summary.wall_time);
 }

@@ -1,8 +1,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
+#include "mimpact/kernel/simulation.hpp"
 
 namespace mimpact::models {
 
@@ -21,6 +24,22 @@ struct BouncingBall {
   double mass() const;
   // one system (z), one interaction g = z - R with the floor
   std::shared_ptr<kernel::NonSmoothDynamicalSystem> build() const;
+};
+
+// What the ball does: the time (s), height (m) and rebound speed (m/s) of every bounce, and
+// the contact forces when it first rests on the ground (the LCP's lambda, at the time of rest).
+class BounceRecord : public kernel::SimulationObserver {
+ public:
+  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
+    times.push_back(report.time);
+    heights.push_back(simulation.system().system(0).position()(0));
+    speeds.push_back(report.velocity_after(0));
+  }
+  void on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
+    if (!resting && step.contact_forces && step.contact_forces->force.size()) resting = *step.contact_forces;
+  }
+  std::vector<double> times, heights, speeds;
+  std::optional<kernel::ContactForces> resting;
 };
 
 }  // namespace mimpact::models
