@@ -25,7 +25,11 @@ void BM_LemkeRandomPositiveDefinite(benchmark::State& state) {
   state.counters["pivots"] = result.pivots;
   state.counters["complementarity_error"] = result.complementarity_error;
 }
-BENCHMARK(BM_LemkeRandomPositiveDefinite)->Arg(10)->Arg(100)->Arg(500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LemkeRandomPositiveDefinite)
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(500)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -1,30 +1,31 @@
-// Cost of the LZB impulse-step integrator: the whole impact of chain C1 at the seed's
+// Cost of the LZB impulse-step integrator: the whole impact of chain C1 at the paper's
 // finest delta_p, and the cost of a step against the length of the chain.
 #include <benchmark/benchmark.h>
 
 #include <string>
 
-#include "mimpact/chain/chain_impact.hpp"
-#include "mimpact/chain/chain_model.hpp"
-#include "mimpact/chain/chain_scene.hpp"
+#include "mimpact/chains/chain_impact.hpp"
+#include "mimpact/chains/chain_model.hpp"
+#include "mimpact/chains/chain_scene.hpp"
 
 namespace {
 
 using namespace mimpact;
 
-chain::ChainModel c1_like_chain(int beads) {
+chains::ChainModel c1_like_chain(int beads) {
   const std::string text =
       R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
-          "chain": {"segments": [{"count": )" + std::to_string(beads) + R"(, "radius": 0.010}]},
+          "chain": {"segments": [{"count": )" +
+      std::to_string(beads) + R"(, "radius": 0.010}]},
           "strikers": [{"side": "left", "radius": 0.010, "velocity": 1.0}]})";
-  return chain::build_chain_model(chain::parse_chain_scene(text, "bench chain"));
+  return chains::build_chain_model(chains::parse_chain_scene(text, "bench chain"));
 }
 
-// The whole impact of C1 at delta_p = 1e-6 (458 933 steps in the seed; 7.23 s there,
+// The whole impact of C1 at delta_p = 1e-6 (458 933 steps in the paper; 7.23 s there,
 // 1.23 s for Siconos 4.5 on this machine).
 void BM_C1WholeImpact(benchmark::State& state) {
-  const chain::ChainModel model =
-      chain::build_chain_model(chain::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
+  const chains::ChainModel model = chains::build_chain_model(
+      chains::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
   numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6});
   numerics::LzbResult result;
   for (auto _ : state) {
@@ -39,13 +40,13 @@ BENCHMARK(BM_C1WholeImpact)->Unit(benchmark::kMillisecond);
 // The same impact through the kernel, as `mimpact chain` runs it: the chain's system, the
 // event-driven integrator, the LZB impact problem, Delassus assembly, the simulation loop.
 void BM_C1ThroughKernel(benchmark::State& state) {
-  const chain::ChainModel model =
-      chain::build_chain_model(chain::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
+  const chains::ChainModel model = chains::build_chain_model(
+      chains::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
   numerics::LzbOptions options;
   options.delta_p = 1e-6;
-  chain::ChainImpact impact;
+  chains::ChainImpact impact;
   for (auto _ : state) {
-    impact = chain::simulate_chain_impact(model, options);
+    impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
   }
   state.counters["steps"] = double(impact.lzb.steps);
@@ -56,7 +57,7 @@ BENCHMARK(BM_C1ThroughKernel)->Unit(benchmark::kMillisecond);
 // impact ends before the budget). The work of a step follows the contacts in the wave, so
 // the cost of a step must not grow with the chain.
 void BM_ChainSteps(benchmark::State& state) {
-  const chain::ChainModel model = c1_like_chain(int(state.range(0)));
+  const chains::ChainModel model = c1_like_chain(int(state.range(0)));
   numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6, .max_steps = 400'000});
   numerics::LzbResult result;
   for (auto _ : state) {
@@ -75,7 +76,7 @@ BENCHMARK(BM_ChainSteps)->Arg(20)->Arg(1000)->Arg(100000)->Unit(benchmark::kMill
 // What a call costs before its first step: checking H and resetting the per-contact
 // buffers, linear in the number of contacts.
 void BM_ImpactSetup(benchmark::State& state) {
-  const chain::ChainModel model = c1_like_chain(int(state.range(0)));
+  const chains::ChainModel model = c1_like_chain(int(state.range(0)));
   numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6, .max_steps = 1});
   for (auto _ : state) {
     numerics::LzbResult result = integrator.integrate(model.H, model.u_minus, model.laws);

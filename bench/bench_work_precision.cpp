@@ -1,5 +1,5 @@
 // The work-precision study: what accuracy each method buys with how much time. For chains
-// C1, C2 (SCENES.md, e = 1), N (Nakagawa, e = 0.955), M type 2 (Melo, e = 0.965) and a
+// C1, C2 (docs/experiments.md, e = 1), N (Nakagawa, e = 0.955), M type 2 (Melo, e = 0.965) and a
 // 1 000-bead C1, the error of the post-impact velocities and of the peak forces against a
 // reference, against the wall time of a run through the kernel (what `mimpact chain` pays),
 // for the LZB impulse dynamics over delta_p and for the compliant contacts integrated in time
@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "mimpact/chain/chain_impact.hpp"
-#include "mimpact/chain/chain_model.hpp"
-#include "mimpact/chain/chain_recorder.hpp"
-#include "mimpact/chain/chain_scene.hpp"
+#include "mimpact/chains/chain_impact.hpp"
+#include "mimpact/chains/chain_model.hpp"
+#include "mimpact/chains/chain_recorder.hpp"
+#include "mimpact/chains/chain_scene.hpp"
 
 namespace {
 
@@ -37,29 +37,29 @@ struct Outcome {
 
 struct Case {
   std::string name;
-  chain::ChainScene scene;
+  chains::ChainScene scene;
   double reference_tolerance;  // of the compliant reference, for e = 1
   std::vector<double> shares;  // delta_p / (m V) of the LZB runs
 };
 
-Outcome outcome_of(const chain::ChainImpact& impact) {
+Outcome outcome_of(const chains::ChainImpact& impact) {
   return {impact.velocity_after, impact.lzb.max_force, impact.lzb.steps};
 }
 
-Outcome run_lzb(const Case& c, const chain::ChainModel& model, double share) {
-  const double delta_p = share * chain::natural_impulse(model);
-  return outcome_of(chain::simulate_chain_impact(model, c.scene.lzb_options(delta_p)));
+Outcome run_lzb(const Case& c, const chains::ChainModel& model, double share) {
+  const double delta_p = share * chains::natural_impulse(model);
+  return outcome_of(chains::simulate_chain_impact(model, c.scene.lzb_options(delta_p)));
 }
 
-Outcome run_compliant(const Case& c, const chain::ChainModel& model, double tolerance) {
-  chain::CompliantSpec spec = c.scene.compliant;
+Outcome run_compliant(const Case& c, const chains::ChainModel& model, double tolerance) {
+  chains::CompliantSpec spec = c.scene.compliant;
   spec.tolerance = tolerance;
-  return outcome_of(chain::simulate_chain_compliant(model, spec, {}).impact);
+  return outcome_of(chains::simulate_chain_compliant(model, spec, {}).impact);
 }
 
 bool elastic(const Case& c) { return c.scene.contact.restitution == 1.0; }
 
-const Outcome& reference(const Case& c, const chain::ChainModel& model) {
+const Outcome& reference(const Case& c, const chains::ChainModel& model) {
   static std::map<std::string, Outcome> cache;
   auto found = cache.find(c.name);
   if (found != cache.end()) return found->second;
@@ -82,7 +82,7 @@ double relative_error(const VectorXd& x, const VectorXd& reference) {
 enum class Method { lzb, compliant };
 
 void work_precision(benchmark::State& state, const Case* c, Method method, double knob) {
-  const chain::ChainModel model = chain::build_chain_model(c->scene);
+  const chains::ChainModel model = chains::build_chain_model(c->scene);
   const Outcome& exact = reference(*c, model);
   Outcome outcome;
   for (auto _ : state) {
@@ -95,15 +95,15 @@ void work_precision(benchmark::State& state, const Case* c, Method method, doubl
   state.counters["knob"] = knob;
 }
 
-chain::ChainScene scene_file(const std::string& name) {
-  return chain::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/" + name);
+chains::ChainScene scene_file(const std::string& name) {
+  return chains::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/" + name);
 }
 
 // C1's beads and striker, `beads` long; the compliant run stops at `end_time` (s): behind the
 // wave the beads of a long chain come to rest touching, so its contacts never all open.
-chain::ChainScene c1_like_chain(int beads, double end_time) {
-  chain::ChainScene scene = scene_file("c1.json");
-  scene.segments[0].count = beads;
+chains::ChainScene c1_like_chain(int beads, double end_time) {
+  chains::ChainScene scene = scene_file("c1.json");
+  scene.chain.segments[0].count = beads;
   scene.compliant.end_time = end_time;
   return scene;
 }
@@ -127,7 +127,7 @@ std::vector<Case> cases() {
 // 2e-4 s and crosses a bead in 3e-5 s (LZB: 6.3e-4 s for 20 beads, 0.0297 s for 1 000).
 void chain_length(benchmark::State& state, Method method, int beads) {
   Case c{"n", c1_like_chain(beads, 2e-4 + 3.2e-5 * beads), 0.0, {}};
-  const chain::ChainModel model = chain::build_chain_model(c.scene);
+  const chains::ChainModel model = chains::build_chain_model(c.scene);
   Outcome outcome;
   for (auto _ : state) {
     outcome = method == Method::lzb ? run_lzb(c, model, 1e-4) : run_compliant(c, model, 1e-6);
@@ -156,15 +156,18 @@ int main(int argc, char** argv) {
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
     for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10})
-      benchmark::RegisterBenchmark(("WorkPrecision/" + c.name + "/compliant/" + knob_text(tolerance)).c_str(),
-                                   work_precision, &c, Method::compliant, tolerance)
+      benchmark::RegisterBenchmark(
+          ("WorkPrecision/" + c.name + "/compliant/" + knob_text(tolerance)).c_str(),
+          work_precision, &c, Method::compliant, tolerance)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
   }
   for (int beads : {10, 30, 100, 300, 1000, 3000})
     for (Method method : {Method::lzb, Method::compliant})
       benchmark::RegisterBenchmark(
-          ("ChainLength/" + std::string(method == Method::lzb ? "lzb/" : "compliant/") + std::to_string(beads)).c_str(),
+          ("ChainLength/" + std::string(method == Method::lzb ? "lzb/" : "compliant/") +
+           std::to_string(beads))
+              .c_str(),
           chain_length, method, beads)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();

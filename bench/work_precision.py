@@ -239,7 +239,7 @@ integrated in time (Dormand-Prince 5(4), contact events located) at relative tol
 1e-10. The error is ‖x − x_ref‖∞ / ‖x_ref‖∞ over the post-impact velocities, and over every
 contact's largest force. The reference is, for e = 1, the compliant method at tolerance 1e-12
 (1e-10 for the 1 000 beads): the Hertz chain, which LZB converges to at first order; for e < 1,
-where the two laws differ on re-loading (LZB.md §3), LZB Richardson-extrapolated from ΔP = 1e-6
+where the two laws differ on re-loading (docs/model.md §3), LZB Richardson-extrapolated from ΔP = 1e-6
 and 5e-7 m V. The compliant runs of the 1 000-bead chain stop at 0.032 s, after the wave has left
 (0.0297 s): behind the wave the beads come to rest touching, so their contacts never all open.
 

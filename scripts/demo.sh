@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds mimpact and runs one experiment of the seeds end to end:
-# Nakagawa's tapered chain (seed 000, section 4), at three restitutions. Prints its report
+# Installs what is missing, builds mimpact and runs one experiment of the papers end to end:
+# Nakagawa's tapered chain (Nguyen & Brogliato 2011, section 4), at three restitutions. Prints its report
 # (text and table) and leaves its figures in build/demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -3,7 +3,7 @@
 
 BUILD_PACKAGES=(cmake make g++ libeigen3-dev libboost-dev libboost-program-options-dev
                 libsuitesparse-dev nlohmann-json3-dev)
-TEST_PACKAGES=(libgtest-dev libbenchmark-dev)
+TEST_PACKAGES=(libgtest-dev libbenchmark-dev clang-format)
 
 ensure_packages() {
   local missing=()

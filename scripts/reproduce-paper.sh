@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds mimpact, runs every experiment of SCENES.md and writes
+# Installs what is missing, builds mimpact, runs every experiment of docs/experiments.md and writes
 # docs/results/ (figures and README.md) from what the runs wrote. About thirty seconds.
 #   bash scripts/reproduce-paper.sh [--only C|N|M|scaling|J|S|W]
 set -euo pipefail
@@ -9,4 +9,4 @@ ensure_packages "${BUILD_PACKAGES[@]}" python3-matplotlib python3-numpy
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j2 --target mimpact >/dev/null
 # Debian's Python, which python3-matplotlib provides for
-/usr/bin/python3 scripts/reproduce_paper.py --mimpact build/release/examples/cli/mimpact "$@"
+/usr/bin/python3 scripts/reproduce_paper.py --mimpact build/release/bin/mimpact "$@"

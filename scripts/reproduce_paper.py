@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""Runs every experiment of SCENES.md with `mimpact`, then draws the figures and writes the
+"""Runs every experiment of docs/experiments.md with `mimpact`, then draws the figures and writes the
 report of docs/results/ from what the runs wrote (summary.json, forces.csv) and from the
 theory `mimpact nesterenko` prints. Nothing here computes physics: the runs and the library do.
 
-    /usr/bin/python3 scripts/reproduce_paper.py --mimpact build/release/examples/cli/mimpact
+    /usr/bin/python3 scripts/reproduce_paper.py --mimpact build/release/bin/mimpact
 """
 import argparse
 import copy
@@ -98,34 +98,34 @@ def save(fig, path):
     plt.close(fig)
 
 
-# --- C: convergence of the impulse dynamics (seed 000, appendix A.2, tables 2-4) ----------
+# --- C: convergence of the impulse dynamics (Nguyen & Brogliato 2011, appendix A.2, tables 2-4) ----------
 
-# The seed's tables 2-4: chain -> [(delta_p, steps, max eta_h, eta+_h, converged)]
-SEED_TABLES = {
+# The paper's tables 2-4: chain -> [(delta_p, steps, max eta_h, eta+_h, converged)]
+PAPER_TABLES = {
     "C1": [(1e-4, 4622, 0.09, 0.0046, False), (1e-5, 45913, 0.008, 0.0003, True),
            (1e-6, 458934, 0.003, 0.00015, True)],
     "C2": [(1e-5, 22331, 0.05, 0.002, False), (1e-6, 223001, 0.006, 0.00007, True)],
     "C3": [(1e-5, 14139, 0.13, 0.07, False), (1e-6, 272754, 0.013, 0.0018, False),
            (1e-7, 1363111, 0.03, 0.002, False)],
 }
-# C3 runs with the seed's (Siconos's) fixed termination thresholds, which its verdicts depend on
+# C3 runs with the paper's (Siconos's) fixed termination thresholds, which its verdicts depend on
 CONVERGENCE_SCENE = {"C1": ("c1.json", CONVERGENCE_SCENES), "C2": ("c2.json", CONVERGENCE_SCENES),
                      "C3": ("c3_fixed_thresholds.json", SCENES)}
 
 
 def experiment_c(runner, out):
     scenes = {chain: runner.load_scene(*where) for chain, where in CONVERGENCE_SCENE.items()}
-    table = ["| chain | ΔP (N s) | steps, ours / seed | max η_h, ours / seed | η⁺_h, ours / seed | converged, ours / seed |",
+    table = ["| chain | ΔP (N s) | steps, ours / paper | max η_h, ours / paper | η⁺_h, ours / paper | converged, ours / paper |",
              "|---|---|---|---|---|---|"]
     verdicts_agree = 0
-    for chain, rows in SEED_TABLES.items():
+    for chain, rows in PAPER_TABLES.items():
         for delta_p, steps, max_eta, eta_plus, converged in rows:
             ours = runner.converge(scenes[chain], f"C/{chain}_{delta_p:g}", delta_p, 1)["rows"][0]
             verdicts_agree += ours["converged"] == converged
             table.append(f"| {chain} | {delta_p:g} | {ours['impulse_steps']} / {steps} | "
                          f"{ours['max_eta']:.2g} / {max_eta:g} | {ours['eta_plus']:.2g} / {eta_plus:g} | "
                          f"{'yes' if ours['converged'] else 'no'} / {'yes' if converged else 'no'} |")
-    verdicts = sum(len(rows) for rows in SEED_TABLES.values())
+    verdicts = sum(len(rows) for rows in PAPER_TABLES.values())
 
     # the whole halving sweep, past convergence (tolerances no run meets)
     sweeps = {chain: runner.converge(scenes[chain], f"C/{chain}_sweep", 1e-4, 10, (1e-12, 1e-12))["rows"]
@@ -152,13 +152,13 @@ def experiment_c(runner, out):
         h = [r["delta_p"] for r in rows]
         ax.loglog(h, [r["max_eta"] for r in rows], "-", color=colour, label=f"{chain}: max η_h")
         ax.loglog(h, [r["eta_plus"] for r in rows], "--", color=colour, label=f"{chain}: η⁺_h")
-        seed = SEED_TABLES[chain]
-        ax.loglog([r[0] for r in seed], [r[2] for r in seed], "o", color=colour, mfc="none")
-        ax.loglog([r[0] for r in seed], [r[3] for r in seed], "s", color=colour, mfc="none")
+        published = PAPER_TABLES[chain]
+        ax.loglog([r[0] for r in published], [r[2] for r in published], "o", color=colour, mfc="none")
+        ax.loglog([r[0] for r in published], [r[3] for r in published], "s", color=colour, mfc="none")
     ax.axhline(0.01, color="k", lw=0.8)
     ax.set_xlabel("ΔP (N s)")
     ax.set_ylabel("discrepancy between ΔP and ΔP/2")
-    ax.set_title("lines: mimpact; ○ max η_h, □ η⁺_h: the seed; C3 with the seed's thresholds", fontsize=8)
+    ax.set_title("lines: mimpact; ○ max η_h, □ η⁺_h: the paper; C3 with the paper's thresholds", fontsize=8)
     ax.legend(fontsize=7, ncol=2, loc="lower right")
     ax = axes[1]
     for chain, marker in (("C1", "o-"), ("C2", "s-")):
@@ -170,21 +170,21 @@ def experiment_c(runner, out):
     ax.legend(fontsize=7)
     save(fig, out / "C_convergence.png")
 
-    c3 = SEED_TABLES["C3"]
+    c3 = PAPER_TABLES["C3"]
     lock = 0.0
     for delta_p, *_ in c3:
         scene = copy.deepcopy(scenes["C3"])
         scene["impact"]["delta_p"] = delta_p
         block = runner.run(scene, f"C/C3_block_{delta_p:g}").velocities() / scene["strikers"][0]["velocity"]
         lock = max(lock, np.max(np.abs(block * len(block) - 1)))
-    text = f"""`mimpact converge SCENE --from ΔP --halvings 1` at each ΔP of the seed's tables 2-4: η_h compares
+    text = f"""`mimpact converge SCENE --from ΔP --halvings 1` at each ΔP of the paper's tables 2-4: η_h compares
 the run at ΔP with the run at ΔP/2 at equal principal impulse (max η_h along the impact, η⁺_h after
-it), and the impact is converged when both are below 0.01. {verdicts_agree} of the {verdicts} verdicts are the seed's.
-C3 (e = 0.6) is run with the seed's (Siconos's) fixed termination thresholds, 1e-8 m/s and 1e-8 J
+it), and the impact is converged when both are below 0.01. {verdicts_agree} of the {verdicts} verdicts are the paper's.
+C3 (e = 0.6) is run with the paper's (Siconos's) fixed termination thresholds, 1e-8 m/s and 1e-8 J
 (`paper/c3_fixed_thresholds.json`): they do not shrink with ΔP, so max η_h stops falling below
-ΔP = 1e-6 and C3 never converges, as in the seed. Each of its runs ends with the chain locked
-into one block (every ball at V/21 to {lock:.0e}, LZB.md §3), so its η⁺_h is small while max η_h, along
-the impact, is not. Its step counts differ from the seed's
+ΔP = 1e-6 and C3 never converges, as in the paper. Each of its runs ends with the chain locked
+into one block (every ball at V/21 to {lock:.0e}, docs/model.md §3), so its η⁺_h is small while max η_h, along
+the impact, is not. Its step counts differ from the paper's
 ({c3[1][1]} at 1e-6) for the same reason: they depend on where the thresholds end the impact.
 Left, the whole halving sweep from 1e-4: max η_h and η⁺_h fall in proportion to ΔP for C1 and C2.
 Right, for e = 1 the LZB post-impact velocities converge to the exact Hertz chain (the compliant
@@ -193,7 +193,7 @@ method at tolerance 1e-12) at fitted order {orders['C1']:.2f} (C1) and {orders['
     return {"table": "\n".join(table), "text": text, "figures": ["C_convergence.png"], "measured": {}}
 
 
-# --- S: two solitary waves colliding (seed 000, section 7) ---------------------------------
+# --- S: two solitary waves colliding (Nguyen & Brogliato 2011, section 7) ---------------------------------
 
 def experiment_s(runner, out):
     published = {
@@ -251,7 +251,7 @@ def experiment_s(runner, out):
     elastic_shift = (max(elastic_train[1:], key=lambda p: p["force"])["time"] -
                      elastic["single"].pulses[16]["time_of_peak"]) * 1e6
 
-    table = ["| chain | quantity | mimpact | seed, simulated | deviation | seed, measured |",
+    table = ["| chain | quantity | mimpact | paper, simulated | deviation | paper, measured |",
              "|---|---|---|---|---|---|"]
     for beads, quantity, ours, simulated, experiment in rows:
         table.append(f"| {beads} beads | {quantity} | {ours:.3f} | {simulated:g} | "
@@ -259,11 +259,11 @@ def experiment_s(runner, out):
     m25, m26 = measured[25], measured[26]
     text = f"""Strikers of 4 mm at both ends of 25 beads (0.31 m/s) and 26 beads (0.40 m/s) of 13 mm,
 e = 0.93, ΔP = 1e-6, in one LZB multiple impact; the reference single wave comes from the left
-striker alone. The single-wave amplitudes at beads 9 and 17 agree with the seed's simulation
+striker alone. The single-wave amplitudes at beads 9 and 17 agree with the paper's simulation
 within {max(abs(deviation(m['f9'], published[b]['f9'][0])) for b, m in measured.items()):.1f} %
 (ours are the lower, and closer to the measured ones at bead 9).
 
-The seed calls the change of arrival time of the left wave at bead 17 a *delay* (35.5 µs and
+The paper calls the change of arrival time of the left wave at bead 17 a *delay* (35.5 µs and
 33.7 µs). We find the same magnitude within {max(abs(deviation(abs(m['shift']), published[b]['delay'][0])) for b, m in measured.items()):.0f} %
 but with the opposite sign: after the collision the left wave reaches bead 17
 {abs(m25['shift']):.1f} µs (25 beads) and {abs(m26['shift']):.1f} µs (26 beads) **earlier** than the
@@ -272,12 +272,12 @@ around the crossing are squeezed from both sides, the contacts are stiffer there
 stiffness grows with the load) and each wave runs faster through the crossing, so it comes out
 ahead of where it would be alone. The elastic chain shows it without any dissipation: with
 e = 1 (the exact Hertz chain as ΔP → 0) the left wave comes {abs(elastic_shift):.1f} µs
-{'earlier' if elastic_shift < 0 else 'later'}. The seed's word *delay* gives the size of the shift; its
+{'earlier' if elastic_shift < 0 else 'later'}. The paper's word *delay* gives the size of the shift; its
 sign is the one above.
 
-After the collision the left wave at bead 17 is {m25['after']:.2f} N (seed: 7.0 N simulated,
-6.2 N measured); the secondary waves of the even chain reach {m26['ssw']:.2f} N (seed: 0.32 N
-simulated, about 1 N measured): the model, like the seed's, underestimates them."""
+After the collision the left wave at bead 17 is {m25['after']:.2f} N (paper: 7.0 N simulated,
+6.2 N measured); the secondary waves of the even chain reach {m26['ssw']:.2f} N (paper: 0.32 N
+simulated, about 1 N measured): the model, like the paper's, underestimates them."""
     return {"table": "\n".join(table), "text": text, "figures": ["S_colliding_waves.png"],
             "measured": measured}
 
@@ -294,9 +294,9 @@ def experiment_scaling(runner, out):
         c, w = chain.pulses[10], wall.pulses[10]
         ratios = (w["peak"] / c["peak"], w["width"] / c["width"], w["time_of_peak"] / c["time_of_peak"])
         measured[e] = ratios
-        for name, ours, seed in zip(("F_wall / F_chain", "τ_wall / τ_chain", "T_wall / T_chain"),
+        for name, ours, published in zip(("F_wall / F_chain", "τ_wall / τ_chain", "T_wall / T_chain"),
                                     ratios, published):
-            rows.append(f"| {e:g} | {name} | {ours:.4f} | {seed:g} | {deviation(ours, seed):+.1f} % |")
+            rows.append(f"| {e:g} | {name} | {ours:.4f} | {published:g} | {deviation(ours, published):+.1f} % |")
         ax = axes[column]
         for result, pulse, label in ((chain, c, "chain, contact 10"), (wall, w, "wall after 10 beads")):
             force = result.forces[10]
@@ -308,20 +308,20 @@ def experiment_scaling(runner, out):
         ax.legend(fontsize=8)
     axes[0].set_ylabel("F / F_m")
     save(fig, out / "M_scaling_check.png")
-    table = ["| e | ratio | mimpact | seed | deviation |", "|---|---|---|---|---|"] + rows
+    table = ["| e | ratio | mimpact | paper | deviation |", "|---|---|---|---|---|"] + rows
     r1 = measured[1.0]
-    text = f"""20 beads of 26 mm struck by an 8 mm bead at 0.62 m/s (the Melo parameters, which the seed
+    text = f"""20 beads of 26 mm struck by an 8 mm bead at 0.62 m/s (the Melo parameters, which the paper
 does not restate for this check), force at the right contact of bead 10, against 10 beads
 and a rigid wall of the same steel. The wall doubles the force ({r1[0]:.3f} times), lengthens
-the pulse by {100 * (r1[1] - 1):.1f} % and delays it by {100 * (r1[2] - 1):.1f} %: the seed's 1.94, 1.09 and 1.02, at
+the pulse by {100 * (r1[1] - 1):.1f} % and delays it by {100 * (r1[2] - 1):.1f} %: the paper's 1.94, 1.09 and 1.02, at
 both restitutions. Normalized, the two pulses share their front and differ in the tail, as in
-the seed's figure 8. This is what makes the seed's (and the experiment's) extrapolation from
+the paper's figure 8. This is what makes the paper's (and the experiment's) extrapolation from
 a wall force to the force inside a chain legitimate."""
     return {"table": "\n".join(table), "text": text, "figures": ["M_scaling_check.png"],
             "measured": measured}
 
 
-# --- J: stepped chains, a solitary wave train (seed 000, section 6) ------------------------
+# --- J: stepped chains, a solitary wave train (Nguyen & Brogliato 2011, section 6) ------------------------
 
 def first_train(train):
     """The pulses of the first wave train at a wall: in time order, while they decrease."""
@@ -371,29 +371,29 @@ def experiment_j(runner, out):
     save(fig, out / "J_wave_trains.png")
 
     published = {1.0: (None, None, 0.31, 0.36), 0.98: (None, 23.0, 0.30, None)}
-    table = ["| e, V | incident F_m, contact 6 (N) | interface F_m, contact 7 (N) | ratio | seed, simulated | seed, measured |",
+    table = ["| e, V | incident F_m, contact 6 (N) | interface F_m, contact 7 (N) | ratio | paper, simulated | paper, measured |",
              "|---|---|---|---|---|---|"]
     for e, incident, interface, ratio in rows:
-        _, interface_seed, ratio_seed, ratio_measured = published[e]
-        seed = f"ratio {ratio_seed:g} ({deviation(ratio, ratio_seed):+.1f} %)"
-        if interface_seed:
-            seed += f", interface {interface_seed:g} N ({deviation(interface, interface_seed):+.1f} %)"
+        _, interface_published, ratio_published, ratio_measured = published[e]
+        published = f"ratio {ratio_published:g} ({deviation(ratio, ratio_published):+.1f} %)"
+        if interface_published:
+            published += f", interface {interface_published:g} N ({deviation(interface, interface_published):+.1f} %)"
         measured = f"ratio {ratio_measured:g}" if ratio_measured else "interface 20 N"
         table.append(f"| {e:g}, {0.31 if e == 1.0 else 0.40} m/s | {incident:.2f} | {interface:.2f} | "
-                     f"{ratio:.3f} | {seed} | {measured} |")
-    table += ["", "| e | small beads | significant waves in the first train (≥ 5 % of the first) | seed, simulated | seed, measured |",
+                     f"{ratio:.3f} | {published} | {measured} |")
+    table += ["", "| e | small beads | significant waves in the first train (≥ 5 % of the first) | paper, simulated | paper, measured |",
               "|---|---|---|---|---|"]
     for (tag, small), count in sorted(counts.items()):
         table.append(f"| {'1' if tag == 'e10' else '0.98'} | {small} | {count} | about 7 | 5 |")
     ratio = rows[0][3]
     text = f"""Seven beads of 13 mm then 25 or 50 beads of 6.5 mm against a wall, struck by a 6.5 mm bead.
 The force that crosses the interface (contact 7) is {ratio:.3f} of the incident one (contact 6)
-for e = 1, the seed's 0.31; with e = 0.98 at 0.40 m/s the interface force is
-{rows[1][2]:.1f} N for the seed's 23 N. The experiment's ratio, 0.36, is higher: like the seed, we
+for e = 1, the paper's 0.31; with e = 0.98 at 0.40 m/s the interface force is
+{rows[1][2]:.1f} N for the paper's 23 N. The experiment's ratio, 0.36, is higher: like the paper, we
 overestimate the incident wave. Behind the interface the wave breaks into a train of solitary
 waves of falling amplitude. Counting the waves of the first train that reach 5 % of the first
-(the seed gives no criterion; this one is ours), the 25-bead chain carries
-{counts['e10', 25]} at e = 1, beside the seed's "about 7" simulated and 5 measured. The count
+(the paper gives no criterion; this one is ours), the 25-bead chain carries
+{counts['e10', 25]} at e = 1, beside the paper's "about 7" simulated and 5 measured. The count
 moves by one with the threshold: the amplitudes fall geometrically, by about a third from one
 wave to the next (figure), so the 8th wave sits near 5 % of the first."""
     return {"table": "\n".join(table), "text": text,
@@ -401,7 +401,7 @@ wave to the next (figure), so the 8th wave sits near 5 % of the first."""
             "measured": {"ratio": ratio, "counts": counts}}
 
 
-# --- N: Nakagawa's tapered chain (seed 000, section 4) -------------------------------------
+# --- N: Nakagawa's tapered chain (Nguyen & Brogliato 2011, section 4) -------------------------------------
 
 def experiment_n(runner, out):
     results = {}
@@ -445,16 +445,16 @@ over the impactor's. The momentum is handed on down the taper to ever smaller ba
 leave ever faster: the last ball leaves at {high[19]:.2f} times the impactor's speed for e = 0.965,
 the impactor itself keeps {high[0]:+.3f} of it. A lower restitution slows the small end (the last
 ball {100 * (low[19] / high[19] - 1):+.1f} % at e = 0.947) and leaves the large end almost as it is (ball 10
-within {100 * abs(low[10] / high[10] - 1):.1f} %). The seed judges e = 0.965 the best match to Nakagawa's measured velocities
+within {100 * abs(low[10] / high[10] - 1):.1f} %). The paper judges e = 0.965 the best match to Nakagawa's measured velocities
 and notes that the model overestimates ball 1 and slightly underestimates the small end; the
-measured velocities are not in the seeds, so that comparison cannot be repeated here."""
+measured velocities are not in the papers, so that comparison cannot be repeated here."""
     return {"table": "\n".join(table), "text": text,
             "figures": ["N_velocities.png", "N_normalized.png"], "measured": {}}
 
 
-# --- M: Melo's mono and tapered chains (seed 000, section 5) -------------------------------
+# --- M: Melo's mono and tapered chains (Nguyen & Brogliato 2011, section 5) -------------------------------
 
-WALL_FORCE, WALL_WIDTH = 1.94, 1.09  # the seed's extrapolation, eq. 39
+WALL_FORCE, WALL_WIDTH = 1.94, 1.09  # the paper's extrapolation, eq. 39
 
 
 def experiment_m(runner, out):
@@ -527,7 +527,7 @@ def experiment_m(runner, out):
             axes[column].legend(fontsize=8)
         save(fig, out / name)
 
-    # seed 000 figure 19: shapes at tapered contacts, direct (type 2) over extrapolated (type 1)
+    # Nguyen & Brogliato (2011) figure 19: shapes at tapered contacts, direct (type 2) over extrapolated (type 1)
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.6), sharey=True)
     for column, (tag, (direct, extrapolated, taper, count)) in enumerate(summaries.items()):
         for k, n in enumerate((2, count // 2, count - 2)):
@@ -578,18 +578,18 @@ def experiment_m(runner, out):
     width_gap = [deviation(te, td) for _, _, _, _, _, te, td in rows]
     text = f"""Sixteen beads of 26 mm then a taper (q1: 14 beads, 5.6 %; q2: 12 beads, 8.27 %), struck by
 an 8 mm bead at 0.62 m/s, e = 0.965, ΔP = 5e-7. Type 1 runs end the chain with a wall after n
-tapered beads and extrapolate the force inside the chain as the seed and the experiment do
+tapered beads and extrapolate the force inside the chain as the paper and the experiment do
 (F = F_wall / 1.94, τ = τ_wall / 1.09); type 2 runs compute it directly in the free chain.
-As the seed describes: the wall pulse falls as n grows ({walls['q1'][0]:.1f} N at n = 0, {walls['q1'][1]:.1f} N at
+As the paper describes: the wall pulse falls as n grows ({walls['q1'][0]:.1f} N at n = 0, {walls['q1'][1]:.1f} N at
 n = 14 for q1; {walls['q2'][1]:.1f} N at n = 12 for q2); normalized, the wall pulses of every n share their
 front while their tails grow and oscillate with n and q (collapse figure); the extrapolation
 overestimates F_m inside the taper ({min(force_gap):+.1f} to {max(force_gap):+.1f} % in the table), by more than the
-seed's "slightly" at the small end of the steeper taper, where the factor 1.94 found for a
+paper's "slightly" at the small end of the steeper taper, where the factor 1.94 found for a
 uniform chain no longer holds; it gets the widths closer ({min(width_gap):+.1f} to {max(width_gap):+.1f} %); and
 the direct tails (P_T) are much smaller than the extrapolated ones, since a wall reflects what
 a free chain lets go: normalized, direct and extrapolated pulses share their front and part in
-the tail (the last figure, the seed's figure 19). Melo's measured numbers are not in the seeds, so the comparison with the
-experiment remains the seed's."""
+the tail (the last figure, the paper's figure 19). Melo's measured numbers are not in the papers, so the comparison with the
+experiment remains the paper's."""
     return {"table": "\n".join(table), "text": text,
             "figures": ["M_wall_pulses.png", "M_collapse.png", "M_peak_force.png", "M_width.png",
                         "M_wave_speed.png", "M_front_impulse.png", "M_tail_impulse.png",
@@ -597,7 +597,7 @@ experiment remains the seed's."""
             "measured": {"rows": rows, "walls": walls}}
 
 
-# --- W: Nesterenko solitary waves, Coste, Falcon & Fauve (seed 001) ------------------------
+# --- W: Nesterenko solitary waves, Coste, Falcon & Fauve (Coste, Falcon & Fauve 1997) ------------------------
 
 COSTE = {"radius": 0.004, "young": 2.26e11, "poisson": 0.3, "density": 7650.0}
 COSTE_MEASURED = [(36.7, 629), (48.5, 659), (61.4, 685), (86.4, 725), (168.5, 811), (216.2, 845),
@@ -693,7 +693,7 @@ def experiment_w(runner, out):
 
     precompressed = figure_12(runner, out)
 
-    table = ["| quantity | mimpact | theory / seed |", "|---|---|---|",
+    table = ["| quantity | mimpact | theory / paper |", "|---|---|---|",
              f"| exponent p of V ∝ F_m^p, fitted over {len(chain)} striker speeds (0.05-6 m/s) | {exponent:.5f} | 1/6 = 0.16667 ({deviation(exponent, 1 / 6):+.3f} %) |",
              f"| V / [C (θ F_m / a²)^(1/6)], F_m between beads | {constants.mean():.4f} | √(4/5) = 0.8944 ({deviation(constants.mean(), math.sqrt(0.8)):+.2f} %) |",
              f"| fitted front width τ / (√10 a / V) at contact 26 | {width_ratio.mean():.3f} | 1 (cos⁶, eq. 28) |",
@@ -733,7 +733,7 @@ range (F_m / F_0 of 0.5 to 40). Below it the pulse is a weak, dispersive sound p
 {-precompressed['all_low']:.1f} % slower than the long-wave c_s. Fitted as V / c_s = k y∞^(-1/5) (the paper's
 figure 12b) over the same range, the simulated chains give k = {precompressed['k_simulated']:.4f} against the theory's √(2/3) = 0.8165; the
 paper's measured points, read through its sensor model (eq. 21), give {precompressed['k_measured']:.4f} (the paper
-fits 0.84 to all its points, 9.8 N included, which SCENES.md does not list)."""
+fits 0.84 to all its points, 9.8 N included, which docs/experiments.md does not list)."""
     return {"table": "\n".join(table), "text": text,
             "figures": ["W_speed_vs_force16.png", "W_speed_vs_force.png", "W_pulse_shape.png",
                         "W_precompressed_chains.png"],
@@ -742,8 +742,8 @@ fits 0.84 to all its points, 9.8 N included, which SCENES.md does not list)."""
 
 
 def figure_12(runner, out):
-    """Seed 001's figure 12 from simulated precompressed chains: V / c_s against F_m / F_0 and
-    against y∞^(-1/5), with eq. 22 and the measured points of SCENES.md W."""
+    """Coste, Falcon & Fauve's figure 12 from simulated precompressed chains: V / c_s against F_m / F_0 and
+    against y∞^(-1/5), with eq. 22 and the measured points of docs/experiments.md W."""
     speeds = np.geomspace(0.01, 5.0, 9)
     simulated = {}
     for static in (9.8, 29.4, 167.0):
@@ -823,13 +823,13 @@ def main():
         (work / folder).mkdir(parents=True, exist_ok=True)
     runner = Runner(args.mimpact, work)
     experiments = [
-        ("C", "C: convergence of the impulse dynamics (seed 000, appendix A.2, tables 2-4)", experiment_c),
-        ("N", "N: Nakagawa's tapered chain (seed 000, section 4)", experiment_n),
-        ("M", "M: Melo's mono and tapered chains (seed 000, section 5)", experiment_m),
-        ("scaling", "The scaling check of seed 000, section 5.1", experiment_scaling),
-        ("J", "J: Job's stepped chains (seed 000, section 6)", experiment_j),
-        ("S", "S: two colliding solitary waves (seed 000, section 7)", experiment_s),
-        ("W", "W: Nesterenko solitary waves, Coste, Falcon & Fauve (seed 001)", experiment_w),
+        ("C", "C: convergence of the impulse dynamics (Nguyen & Brogliato 2011, appendix A.2, tables 2-4)", experiment_c),
+        ("N", "N: Nakagawa's tapered chain (Nguyen & Brogliato 2011, section 4)", experiment_n),
+        ("M", "M: Melo's mono and tapered chains (Nguyen & Brogliato 2011, section 5)", experiment_m),
+        ("scaling", "The scaling check of Nguyen & Brogliato (2011), section 5.1", experiment_scaling),
+        ("J", "J: Job's stepped chains (Nguyen & Brogliato 2011, section 6)", experiment_j),
+        ("S", "S: two colliding solitary waves (Nguyen & Brogliato 2011, section 7)", experiment_s),
+        ("W", "W: Nesterenko solitary waves, Coste, Falcon & Fauve (Coste, Falcon & Fauve 1997)", experiment_w),
     ]
     sections = []
     for key, title, experiment in experiments:
@@ -842,12 +842,12 @@ def main():
     if args.only:
         print("\n".join(sections))
         return
-    header = f"""# The experiments of the seeds, reproduced
+    header = f"""# Published experiments, reproduced
 
 Written by `scripts/reproduce-paper.sh` from {runner.count} runs of `mimpact chain` and `mimpact converge`
 on the scenes of `examples/scenes/` (and the variations the script makes of them), with theory curves from
-`mimpact nesterenko`: every number and figure here comes from what those runs wrote. The seeds'
-numbers are from `../shared/spec/SCENES.md`. Deviations are (mimpact - seed) / seed. Contact i
+`mimpact nesterenko`: every number and figure here comes from what those runs wrote. The papers'
+numbers are from `docs/experiments.md`. Deviations are (mimpact - paper) / paper. Contact i
 joins bodies i and i + 1, body 0 being the left striker; the LZB model is bi-stiffness Hertz.
 """
     (out / "README.md").write_text(header + "\n" + "\n".join(sections))

@@ -1,15 +1,20 @@
 #!/usr/bin/env bash
 # Installs what is missing (Debian bookworm), builds everything in Release and runs every
 # test; builds the unit tests with AddressSanitizer + UndefinedBehaviorSanitizer and runs
-# them; installs the package and builds an application against it with find_package.
+# them; installs the package, moves it to another prefix and builds applications against it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/packages.sh
 ensure_packages "${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}"
 
 jobs=2
+echo "== the repository stands alone"
+bash scripts/check-standalone.sh
+echo "== format"
+bash scripts/check-format.sh
+
 echo "== Release build, all tests"
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DMIMPACT_WERROR=ON >/dev/null
 cmake --build build/release -j"$jobs"
 ctest --test-dir build/release -j"$jobs" --output-on-failure
 
@@ -22,20 +27,23 @@ for bench in "${quick_pass[@]}"; do
 done
 
 echo "== ASan + UBSan build, unit tests"
-cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIMPACT_SANITIZE=ON \
+cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIMPACT_SANITIZE=ON -DMIMPACT_WERROR=ON \
   -DMIMPACT_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/sanitize -j"$jobs" --target mimpact_unit_tests
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build/sanitize -j"$jobs" -L unit --output-on-failure
 
 echo "== the kernel and its tests without plugins/"
-cmake -S . -B build/kernel-only -DCMAKE_BUILD_TYPE=Release -DMIMPACT_BUILD_PLUGINS=OFF >/dev/null
+cmake -S . -B build/kernel-only -DCMAKE_BUILD_TYPE=Release -DMIMPACT_BUILD_PLUGINS=OFF -DMIMPACT_WERROR=ON >/dev/null
 cmake --build build/kernel-only -j"$jobs"
 ctest --test-dir build/kernel-only -j"$jobs" --output-on-failure
 
-echo "== installed package: find_package(mimpact) from an application"
-rm -rf build/install build/linking
+echo "== installed package, moved to another prefix: find_package(mimpact) from applications"
+rm -rf build/install build/install-moved build/linking
 cmake --install build/release --prefix build/install >/dev/null
-cmake -S examples/linking -B build/linking -DCMAKE_PREFIX_PATH="$PWD/build/install" >/dev/null
+# the package must find its own dependencies wherever it lands (no absolute path inside)
+mv build/install build/install-moved
+cmake -S examples/linking -B build/linking -DCMAKE_PREFIX_PATH="$PWD/build/install-moved" >/dev/null
 cmake --build build/linking -j"$jobs"
 build/linking/two_balls
+build/linking/chain_from_scene >/dev/null && echo "chain_from_scene: momentum conserved"

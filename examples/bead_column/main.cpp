@@ -12,9 +12,11 @@ namespace {
 
 class Column : public kernel::SimulationObserver {
  public:
-  void on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
+  kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
     if (step.contact_forces) last_forces = *step.contact_forces;
-    if (step.contact_forces && first_forces.interactions.empty()) first_forces = *step.contact_forces;
+    if (step.contact_forces && first_forces.interactions.empty())
+      first_forces = *step.contact_forces;
+    return kernel::EventStatus::proceed();
   }
   void on_impact(const kernel::Simulation&, const kernel::ImpactReport& report) override {
     if (impacts++ < 3)
@@ -28,7 +30,8 @@ class Column : public kernel::SimulationObserver {
 
 void print_forces(const char* when, const kernel::ContactForces& forces, double weight) {
   std::printf("%s (t = %.4f s), contact forces / bead weight:", when, forces.time);
-  for (kernel::Index k = 0; k < forces.force.size(); ++k) std::printf(" %.6f", forces.force(k) / weight);
+  for (kernel::Index k = 0; k < forces.force.size(); ++k)
+    std::printf(" %.6f", forces.force(k) / weight);
   std::printf("\n");
 }
 

@@ -26,13 +26,14 @@ int main() {
   for (std::size_t k = 0; k < bounces.times.size() && k < 12; ++k) {
     const double outgoing = std::pow(e, double(k + 1)) * first_speed;
     const double apex = bounces.heights[k] + bounces.speeds[k] * bounces.speeds[k] / (2.0 * g);
-    std::printf("%4zu  %.12f  %.12f  %.12f  %.12f\n", k + 1, bounces.times[k], expected_time,
-                apex, ball.radius + outgoing * outgoing / (2.0 * g));
+    std::printf("%4zu  %.12f  %.12f  %.12f  %.12f\n", k + 1, bounces.times[k], expected_time, apex,
+                ball.radius + outgoing * outgoing / (2.0 * g));
     expected_time += 2.0 * outgoing / g;
   }
   if (bounces.resting)
     std::printf("%zu impacts; at rest from t = %.6f s with floor force %.6f N (m g = %.6f N)\n",
-                bounces.times.size(), bounces.resting->time, bounces.resting->force(0), ball.mass() * g);
+                bounces.times.size(), bounces.resting->time, bounces.resting->force(0),
+                ball.mass() * g);
   else
     std::printf("%zu impacts; not at rest by the end of the run\n", bounces.times.size());
   std::printf("%lld events, %lld smooth steps, %.3f s of computation\n", (long long)summary.events,

@@ -14,10 +14,11 @@ using namespace mimpact;
 
 class FirstBounce : public kernel::SimulationObserver {
  public:
-  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
-    before = report.velocity_before(0);
-    after = report.velocity_after(0);
-    const_cast<kernel::Simulation&>(simulation).stop();
+  kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
+    if (!step.impact) return kernel::EventStatus::proceed();
+    before = step.impact->velocity_before(0);
+    after = step.impact->velocity_after(0);
+    return kernel::EventStatus::terminate("first bounce");
   }
   double before = 0.0, after = 0.0;
 };
@@ -34,17 +35,20 @@ int main() {
   system->add(ball);
   system->add(std::make_shared<kernel::Interaction>(
       ball, std::make_shared<kernel::LinearRelation>(Eigen::RowVectorXd::Ones(1), -radius),
-      std::make_shared<plugins::LzbLaw>(numerics::ContactLaw{.stiffness = 1.3e10, .restitution = restitution}),
+      std::make_shared<plugins::LzbLaw>(
+          numerics::ContactLaw{.stiffness = 1.3e10, .restitution = restitution}),
       "floor"));
-  kernel::Simulation simulation(system, kernel::integrators().create("event-driven"),
-                                kernel::impact_problems().create("lzb", {{"relative_delta_p", 1e-3}}),
-                                kernel::contact_force_problems().create("acceleration-lcp"));
+  kernel::Simulation simulation(
+      system, kernel::integrators().create("event-driven"),
+      {.impacts = kernel::impact_problems().create("lzb", {{"relative_delta_p", 1e-3}}),
+       .contact_forces = kernel::contact_force_problems().create("acceleration-lcp")});
   FirstBounce bounce;
   simulation.add_observer(bounce);
   simulation.run(0.0, 1.0);
   const double expected_time = std::sqrt(2.0 * (1.0 - radius) / gravity);
-  std::printf("first bounce at t = %.9f s (free fall: %.9f s), %.6f m/s in, %.6f m/s out (e = %.2f)\n",
-              simulation.time(), expected_time, -bounce.before, bounce.after, restitution);
+  std::printf(
+      "first bounce at t = %.9f s (free fall: %.9f s), %.6f m/s in, %.6f m/s out (e = %.2f)\n",
+      simulation.time(), expected_time, -bounce.before, bounce.after, restitution);
   const bool right = std::abs(bounce.after + restitution * bounce.before) < 1e-9 &&
                      std::abs(simulation.time() - expected_time) < 1e-9;
   return right ? 0 : 1;

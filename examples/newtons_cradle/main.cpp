@@ -17,7 +17,8 @@ class Impacts : public kernel::SimulationObserver {
   void on_start(const kernel::Simulation& simulation) override {
     start_energy = cradle_.energy(simulation.system());
   }
-  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
+  void on_impact(const kernel::Simulation& simulation,
+                 const kernel::ImpactReport& report) override {
     const kernel::NonSmoothDynamicalSystem& system = simulation.system();
     std::printf("impact at t = %.6f s, %zu contacts, %lld steps; ball speeds (m/s):", report.time,
                 report.interactions.size(), (long long)report.steps);

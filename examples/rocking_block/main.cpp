@@ -13,15 +13,18 @@ namespace {
 class Rocking : public kernel::SimulationObserver {
  public:
   explicit Rocking(const models::RockingBlock& block) : block_(block) {}
-  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
+  void on_impact(const kernel::Simulation& simulation,
+                 const kernel::ImpactReport& report) override {
     if (impacts++ < 8) {
       const Eigen::VectorXd& q = simulation.system().system(0).position();
       std::printf("impact at t = %.6f s on %zu corner(s), theta = %+.2e rad, energy %.6f J\n",
-                  report.time, report.interactions.size(), q(2), block_.energy(simulation.system()));
+                  report.time, report.interactions.size(), q(2),
+                  block_.energy(simulation.system()));
     }
   }
-  void on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
+  kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
     if (step.contact_forces) forces = *step.contact_forces;
+    return kernel::EventStatus::proceed();
   }
   int impacts = 0;
   kernel::ContactForces forces;

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::kernel {
 
@@ -30,8 +30,8 @@ void DynamicalSystem::set_state(const Eigen::Ref<const VectorXd>& position,
                                 const Eigen::Ref<const VectorXd>& velocity) {
   if (position.size() != dimension() || velocity.size() != dimension())
     throw InvalidInput("system '" + name_ + "': a state of size " +
-                       std::to_string(position.size()) + "; allowed: " +
-                       std::to_string(dimension()));
+                       std::to_string(position.size()) +
+                       "; allowed: " + std::to_string(dimension()));
   position_ = position;
   velocity_ = velocity;
 }
@@ -48,8 +48,8 @@ void DynamicalSystem::check_mass() const {
   } else if (!M.isApprox(M.transpose(), 1e-12)) {
     why << "M(q) is not symmetric";
   } else if (Eigen::LLT<MatrixXd>(M).info() != Eigen::Success) {
-    why << "M(q) is not positive definite (smallest diagonal entry "
-        << M.diagonal().minCoeff() << "); allowed: a positive mass";
+    why << "M(q) is not positive definite (smallest diagonal entry " << M.diagonal().minCoeff()
+        << "); allowed: a positive mass";
   } else {
     return;
   }

@@ -1,6 +1,6 @@
 #include "mimpact/kernel/interaction.hpp"
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::kernel {
 
@@ -16,8 +16,10 @@ Interaction::Interaction(std::shared_ptr<DynamicalSystem> first,
   const std::string which = "interaction '" + name_ + "'";
   if (!first_) throw InvalidInput(which + " has no dynamical system");
   if (!relation_) throw InvalidInput(which + " has no relation");
-  if (!law_) throw InvalidInput(which + " has no nonsmooth law; allowed: a law the impact "
-                                        "problem handles, e.g. plugins::LzbLaw");
+  if (!law_)
+    throw InvalidInput(which +
+                       " has no nonsmooth law; allowed: a law the impact "
+                       "problem handles, e.g. plugins::LzbLaw");
   if (second_ == first_) throw InvalidInput(which + " joins a system to itself");
   dimension_ = first_->dimension() + (second_ ? second_->dimension() : 0);
   VectorXd q(dimension_);
@@ -26,14 +28,12 @@ Interaction::Interaction(std::shared_ptr<DynamicalSystem> first,
   checked_jacobian(q, row);
 }
 
-Interaction::Interaction(std::shared_ptr<DynamicalSystem> first,
-                         std::shared_ptr<Relation> relation, std::shared_ptr<NonSmoothLaw> law,
-                         std::string name)
-    : Interaction(std::move(first), nullptr, std::move(relation), std::move(law),
-                  std::move(name)) {}
+Interaction::Interaction(std::shared_ptr<DynamicalSystem> first, std::shared_ptr<Relation> relation,
+                         std::shared_ptr<NonSmoothLaw> law, std::string name)
+    : Interaction(std::move(first), nullptr, std::move(relation), std::move(law), std::move(name)) {
+}
 
-void Interaction::stack(const VectorXd& first, const VectorXd& second,
-                        VectorXd& stacked) const {
+void Interaction::stack(const VectorXd& first, const VectorXd& second, VectorXd& stacked) const {
   stacked.head(first_->dimension()) = first;
   if (second_) stacked.tail(second_->dimension()) = second;
 }
@@ -42,9 +42,9 @@ void Interaction::checked_jacobian(const VectorXd& q, RowVectorXd& row) const {
   if (row.size() != dimension_) row.resize(dimension_);
   relation_->jacobian(q, row);
   if (row.size() != dimension_)
-    throw InvalidInput("interaction '" + name_ + "': the Jacobian has " +
-                       std::to_string(row.size()) + " entries; allowed: " +
-                       std::to_string(dimension_) + " (the coordinates of its systems)");
+    throw InvalidInput(
+        "interaction '" + name_ + "': the Jacobian has " + std::to_string(row.size()) +
+        " entries; allowed: " + std::to_string(dimension_) + " (the coordinates of its systems)");
 }
 
 double Interaction::gap() const {

@@ -1,6 +1,6 @@
 #include "mimpact/kernel/lagrangian_ds.hpp"
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::kernel {
 
@@ -9,15 +9,15 @@ namespace {
 void expect_size(const std::string& system, const char* what, Index rows, Index cols,
                  Index dimension, Index expected_cols) {
   if (rows != dimension || cols != expected_cols)
-    throw InvalidInput("system '" + system + "': " + what + " has size " +
-                       std::to_string(rows) + "x" + std::to_string(cols) + "; allowed: " +
-                       std::to_string(dimension) + "x" + std::to_string(expected_cols));
+    throw InvalidInput("system '" + system + "': " + what + " has size " + std::to_string(rows) +
+                       "x" + std::to_string(cols) + "; allowed: " + std::to_string(dimension) +
+                       "x" + std::to_string(expected_cols));
 }
 
 }  // namespace
 
-LagrangianDS::LagrangianDS(VectorXd position, VectorXd velocity, MatrixXd mass,
-                           std::string name, ConstantMass)
+LagrangianDS::LagrangianDS(VectorXd position, VectorXd velocity, MatrixXd mass, std::string name,
+                           ConstantMass)
     : DynamicalSystem(std::move(position), std::move(velocity), std::move(name)),
       constant_mass_(std::move(mass)) {
   expect_size(this->name(), "the mass matrix", constant_mass_.rows(), constant_mass_.cols(),
@@ -44,8 +44,7 @@ bool LagrangianDS::mass_is_diagonal() const {
   return !mass_function_ && constant_mass_.isDiagonal(0.0);
 }
 
-void LagrangianDS::force(double t, const VectorXd& q, const VectorXd& v,
-                         VectorXd& force) const {
+void LagrangianDS::force(double t, const VectorXd& q, const VectorXd& v, VectorXd& force) const {
   force.setZero();
   if (external_) {
     external_(t, force);

@@ -1,6 +1,6 @@
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::kernel {
 
@@ -10,18 +10,17 @@ void expect_square(const std::string& system, const char* what, const MatrixXd& 
                    Index dimension, bool optional) {
   if (optional && matrix.size() == 0) return;
   if (matrix.rows() != dimension || matrix.cols() != dimension)
-    throw InvalidInput("system '" + system + "': " + what + " is " +
-                       std::to_string(matrix.rows()) + "x" + std::to_string(matrix.cols()) +
-                       "; allowed: " + std::to_string(dimension) + "x" +
-                       std::to_string(dimension));
+    throw InvalidInput("system '" + system + "': " + what + " is " + std::to_string(matrix.rows()) +
+                       "x" + std::to_string(matrix.cols()) +
+                       "; allowed: " + std::to_string(dimension) + "x" + std::to_string(dimension));
   if (!matrix.allFinite())
     throw InvalidInput("system '" + system + "': " + what + " has a NaN or infinite entry");
 }
 
 }  // namespace
 
-LagrangianLinearTIDS::LagrangianLinearTIDS(VectorXd position, VectorXd velocity,
-                                           Matrices matrices, std::string name)
+LagrangianLinearTIDS::LagrangianLinearTIDS(VectorXd position, VectorXd velocity, Matrices matrices,
+                                           std::string name)
     : DynamicalSystem(std::move(position), std::move(velocity), std::move(name)),
       matrices_(std::move(matrices)) {
   expect_square(this->name(), "the mass matrix", matrices_.mass, dimension(), false);

@@ -1,6 +1,6 @@
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::kernel {
 
@@ -102,8 +102,8 @@ double NonSmoothDynamicalSystem::jacobian_rate(Index j, const VectorXd& q,
   return interactions_[j]->relation().jacobian_rate(work.q, work.v);
 }
 
-Eigen::SparseMatrix<double> NonSmoothDynamicalSystem::jacobian_matrix(
-    std::span<const Index> subset, const VectorXd& q) const {
+Eigen::SparseMatrix<double> NonSmoothDynamicalSystem::jacobian_matrix(std::span<const Index> subset,
+                                                                      const VectorXd& q) const {
   std::vector<Eigen::Triplet<double>> entries;
   for (std::size_t k = 0; k < subset.size(); ++k)
     for_each_jacobian_entry(subset[k], q, [&](Index row, double value) {

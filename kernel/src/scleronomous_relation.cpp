@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::kernel {
 

@@ -2,31 +2,45 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::kernel {
 
 std::string_view to_string(RunStatus status) {
-  return status == RunStatus::reached_end ? "reached_end" : "stopped";
+  return status == RunStatus::reached_end ? "reached_end" : "terminated";
 }
 
+namespace {
+
+// The problems given must be those the integrator needs: a missing one would fail at the
+// first event, an extra one would be silently unused.
+void check_problem(bool needed, const OneStepNSProblem* given, std::string_view integrator,
+                   const std::string& kind) {
+  const std::string who = "Simulation: the one-step integrator \"" + std::string(integrator) + "\"";
+  if (needed && !given) throw InvalidInput(who + " needs " + kind + "; none was given");
+  if (!needed && given)
+    throw InvalidInput(who + " solves no " + kind.substr(kind.find(' ') + 1) + "; \"" +
+                       std::string(given->name()) + "\" was given");
+}
+
+}  // namespace
+
 Simulation::Simulation(std::shared_ptr<NonSmoothDynamicalSystem> system,
-                       std::unique_ptr<OneStepIntegrator> integrator,
-                       std::unique_ptr<ImpactProblem> impacts,
-                       std::unique_ptr<ContactForceProblem> forces, SimulationOptions options)
+                       std::unique_ptr<OneStepIntegrator> integrator, SimulationProblems problems,
+                       SimulationOptions options)
     : system_(std::move(system)),
       integrator_(std::move(integrator)),
-      impacts_(std::move(impacts)),
-      forces_(std::move(forces)),
+      problems_(std::move(problems)),
       options_(options) {
   if (!system_) throw InvalidInput("Simulation: no nonsmooth dynamical system");
   if (!integrator_) throw InvalidInput("Simulation: no one-step integrator");
-  if (!impacts_) throw InvalidInput("Simulation: no impact problem");
-  if (!forces_) throw InvalidInput("Simulation: no contact force problem");
-  if (!(options_.penetration_tolerance >= 0.0))
-    throw InvalidInput(invalid_value_message("penetration_tolerance",
-                                             options_.penetration_tolerance, ">= 0 (m)"));
+  const OneStepIntegrator::Needs needs = integrator_->needs();
+  check_problem(needs.impacts, problems_.impacts.get(), integrator_->name(), "an impact problem");
+  check_problem(needs.contact_forces, problems_.contact_forces.get(), integrator_->name(),
+                "a contact force problem");
+  validate(options_, "Simulation");
 }
 
 void Simulation::schedule_outputs(double start, double interval, double end) {
@@ -38,17 +52,19 @@ void Simulation::schedule_outputs(double start, double interval, double end) {
 
 RunSummary Simulation::run(double start, double end) {
   if (!(end >= start))
-    throw InvalidInput(invalid_value_message("end time", end, ">= the start time " + to_text(start)));
-  for (Index j = 0; j < system_->interaction_count(); ++j)
-    impacts_->check_law(system_->interaction(j).law(), system_->interaction(j).name());
+    throw InvalidInput(
+        invalid_value_message("end time", end, ">= the start time " + to_text(start)));
+  if (problems_.impacts)
+    for (Index j = 0; j < system_->interaction_count(); ++j)
+      problems_.impacts->check_law(system_->interaction(j).law(), system_->interaction(j).name());
   system_->check(options_.penetration_tolerance);
 
   const auto clock_start = std::chrono::steady_clock::now();
   RunSummary summary;
   summary.start_time = start;
   time_ = start;
-  stop_requested_ = false;
-  integrator_->initialize(*system_, start, *impacts_, *forces_);
+  integrator_->initialize(*system_, start,
+                          {problems_.impacts.get(), problems_.contact_forces.get()});
   tell([&](SimulationObserver& o) { o.on_start(*this); });
   // outputs before the start are past; those at the start need no advance
   while (!outputs_.empty() && outputs_.top() <= start) {
@@ -56,13 +72,17 @@ RunSummary Simulation::run(double start, double end) {
     outputs_.pop();
   }
 
-  while (time_ < end && !stop_requested_) {
+  std::optional<EventStatus> termination;
+  while (time_ < end && !termination) {
     const double target = outputs_.empty() ? end : std::min(end, outputs_.top());
     const StepReport step = integrator_->advance(target);
     time_ = step.time;
     ++summary.advances;
     summary.smooth_steps += step.smooth_steps;
-    tell([&](SimulationObserver& o) { o.on_step(*this, step); });
+    tell([&](SimulationObserver& o) {
+      EventStatus status = o.on_step(*this, step);
+      if (status.terminates() && !termination) termination = std::move(status);
+    });
     if (step.event) {
       ++summary.events;
       tell([&](SimulationObserver& o) { o.on_event(*this, step); });
@@ -76,7 +96,10 @@ RunSummary Simulation::run(double start, double end) {
       tell([&](SimulationObserver& o) { o.on_output(*this); });
     }
   }
-  summary.status = stop_requested_ ? RunStatus::stopped : RunStatus::reached_end;
+  if (termination) {
+    summary.status = RunStatus::terminated;
+    summary.reason = termination->reason();
+  }
   summary.end_time = time_;
   summary.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
 
@@ -12,8 +12,9 @@ namespace {
 
 void check_sizes(const Eigen::SparseMatrix<double>& W, Eigen::Index mass_size) {
   if (mass_size != W.rows())
-    throw InvalidInput("the mass has " + std::to_string(mass_size) + " degrees of freedom but W has " +
-                       std::to_string(W.rows()) + " rows; allowed: one row per degree of freedom");
+    throw InvalidInput("the mass has " + std::to_string(mass_size) +
+                       " degrees of freedom but W has " + std::to_string(W.rows()) +
+                       " rows; allowed: one row per degree of freedom");
 }
 
 }  // namespace
@@ -33,8 +34,9 @@ Delassus::Delassus(const Eigen::SparseMatrix<double>& W, const Eigen::SparseMatr
   check_sizes(W, mass.rows());
   Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>> cholesky(mass);
   if (cholesky.info() != Eigen::Success)
-    throw InvalidInput("the mass matrix is not symmetric positive definite (CHOLMOD could not "
-                       "factorize it); allowed: positive masses");
+    throw InvalidInput(
+        "the mass matrix is not symmetric positive definite (CHOLMOD could not "
+        "factorize it); allowed: positive masses");
   mobility_ = cholesky.solve(W);
   H_ = W.transpose() * mobility_;
   H_.makeCompressed();

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
 
@@ -12,8 +12,9 @@ namespace {
 // Reads the next number or throws, naming the file and the field expected.
 double next_number(std::istream& in, const std::string& source, const std::string& field) {
   double value;
-  if (!(in >> value)) throw InvalidInput(source + ": expected " + field + ", found " +
-                                         (in.eof() ? "end of file" : "something not a number"));
+  if (!(in >> value))
+    throw InvalidInput(source + ": expected " + field + ", found " +
+                       (in.eof() ? "end of file" : "something not a number"));
   return value;
 }
 
@@ -23,7 +24,9 @@ constexpr double kLargestSize = 10000;
 Eigen::Index next_size(std::istream& in, const std::string& source, const std::string& field) {
   const double value = next_number(in, source, field);
   if (!(value >= 0.0 && value == std::floor(value) && value <= kLargestSize))
-    throw InvalidInput(source + ": " + invalid_value_message(field, value, "an integer in [0, 10000] (dense storage)"));
+    throw InvalidInput(
+        source + ": " +
+        invalid_value_message(field, value, "an integer in [0, 10000] (dense storage)"));
   return Eigen::Index(value);
 }
 
@@ -33,21 +36,22 @@ LcpProblem read_lcp(std::istream& in, const std::string& source) {
   const Eigen::Index n = next_size(in, source, "n (problem size)");
   const Eigen::Index storage = next_size(in, source, "storage");
   if (storage != 0)
-    throw InvalidInput(source + ": " + invalid_value_message("storage", double(storage),
-                                                             "0 (dense); sparse-block files "
-                                                             "are not read by this reader"));
+    throw InvalidInput(source + ": " +
+                       invalid_value_message("storage", double(storage),
+                                             "0 (dense); sparse-block files "
+                                             "are not read by this reader"));
   const Eigen::Index rows = next_size(in, source, "rows");
   const Eigen::Index columns = next_size(in, source, "columns");
   const Eigen::Index rows_again = next_size(in, source, "rows (repeated)");
   const Eigen::Index columns_again = next_size(in, source, "columns (repeated)");
   if (rows != n || columns != n || rows_again != n || columns_again != n)
-    throw InvalidInput(source + ": the matrix dimensions disagree with n = " +
-                       std::to_string(n) + "; allowed: an n x n matrix");
+    throw InvalidInput(source + ": the matrix dimensions disagree with n = " + std::to_string(n) +
+                       "; allowed: an n x n matrix");
   LcpProblem problem{Eigen::MatrixXd(n, n), Eigen::VectorXd(n)};
   for (Eigen::Index column = 0; column < n; ++column)
     for (Eigen::Index row = 0; row < n; ++row)
-      problem.M(row, column) = next_number(
-          in, source, "M(" + std::to_string(row) + ", " + std::to_string(column) + ")");
+      problem.M(row, column) =
+          next_number(in, source, "M(" + std::to_string(row) + ", " + std::to_string(column) + ")");
   for (Eigen::Index i = 0; i < n; ++i)
     problem.q(i) = next_number(in, source, "q(" + std::to_string(i) + ")");
   // what follows q (Siconos files often carry a reference solution there) is not read

@@ -2,9 +2,11 @@
 
 #include <sstream>
 
+#include "mimpact/common/error.hpp"
+
 namespace mimpact::numerics {
 
-std::string validate_lcp(const Eigen::MatrixXd& M, const Eigen::VectorXd& q) {
+void validate_lcp(const Eigen::MatrixXd& M, const Eigen::VectorXd& q) {
   std::ostringstream why;
   if (M.rows() != M.cols()) {
     why << "M is " << M.rows() << "x" << M.cols() << "; allowed: a square matrix";
@@ -15,7 +17,7 @@ std::string validate_lcp(const Eigen::MatrixXd& M, const Eigen::VectorXd& q) {
   } else if (!q.allFinite()) {
     why << "q has a NaN or infinite entry; allowed: finite values";
   }
-  return why.str();
+  if (!why.str().empty()) throw InvalidInput(why.str());
 }
 
 double complementarity_error(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,

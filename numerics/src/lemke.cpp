@@ -5,36 +5,25 @@
 #include <sstream>
 #include <vector>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 #include "mimpact/numerics/lcp_problem.hpp"
 
 namespace mimpact::numerics {
 
 std::string_view to_string(LemkeStatus status) {
   switch (status) {
-    case LemkeStatus::solved: return "solved";
-    case LemkeStatus::ray_termination: return "ray_termination";
-    case LemkeStatus::pivot_limit: return "pivot_limit";
-    case LemkeStatus::invalid_input: return "invalid";
-    case LemkeStatus::inaccurate: return "inaccurate";
+    case LemkeStatus::solved:
+      return "solved";
+    case LemkeStatus::ray_termination:
+      return "ray_termination";
+    case LemkeStatus::pivot_limit:
+      return "pivot_limit";
+    case LemkeStatus::invalid_input:
+      return "invalid";
+    case LemkeStatus::inaccurate:
+      return "inaccurate";
   }
   return "unknown";
-}
-
-bool LemkeOptions::is_valid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (max_pivots < 0)
-    return fail(invalid_value_message("max_pivots", max_pivots, "an integer >= 0 (0: 1000 + 100 n)"));
-  if (!(pivot_tolerance >= 0.0 && pivot_tolerance < 1.0))
-    return fail(invalid_value_message("pivot_tolerance", pivot_tolerance, "0 <= tolerance < 1"));
-  if (!(ratio_tolerance >= 0.0 && ratio_tolerance < 1.0))
-    return fail(invalid_value_message("ratio_tolerance", ratio_tolerance, "0 <= tolerance < 1"));
-  if (!(acceptance_tolerance > 0.0 && std::isfinite(acceptance_tolerance)))
-    return fail(invalid_value_message("acceptance_tolerance", acceptance_tolerance, "a finite value > 0"));
-  return true;
 }
 
 namespace {
@@ -58,9 +47,7 @@ class Tableau {
   }
 
   Index artificial() const { return 2 * n_; }
-  Index complement(Index variable) const {
-    return variable < n_ ? variable + n_ : variable - n_;
-  }
+  Index complement(Index variable) const { return variable < n_ ? variable + n_ : variable - n_; }
   Index basic(Index row) const { return basis_[row]; }
 
   // Makes `entering` basic in `row`; returns the variable that leaves.
@@ -100,7 +87,8 @@ class Tableau {
   Eigen::VectorXd z() const {
     Eigen::VectorXd z = Eigen::VectorXd::Zero(n_);
     for (Index row = 0; row < n_; ++row)
-      if (basis_[row] >= n_ && basis_[row] < 2 * n_) z(basis_[row] - n_) = table_(row, rhs_column());
+      if (basis_[row] >= n_ && basis_[row] < 2 * n_)
+        z(basis_[row] - n_) = table_(row, rhs_column());
     return z;
   }
 
@@ -118,9 +106,8 @@ class Tableau {
     for (Index row : candidates_) minimum = std::min(minimum, numerator(row) / column(row));
     const double scale = numerator.cwiseAbs().maxCoeff() / column_max;
     const double tie = options.ratio_tolerance * std::max(std::abs(minimum), scale);
-    std::erase_if(candidates_, [&](Index row) {
-      return numerator(row) / column(row) > minimum + tie;
-    });
+    std::erase_if(candidates_,
+                  [&](Index row) { return numerator(row) / column(row) > minimum + tie; });
   }
 
   Index n_;
@@ -159,14 +146,11 @@ void finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, Eigen::VectorXd 
 LemkeResult solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
                         const LemkeOptions& options) {
   LemkeResult result;
-  std::string why;
-  if (!options.is_valid(&why)) {
-    result.message = "invalid Lemke options: " + why;
-    return result;
-  }
-  why = validate_lcp(M, q);
-  if (!why.empty()) {
-    result.message = why;
+  try {
+    validate(options, "Lemke options");
+    validate_lcp(M, q);
+  } catch (const InvalidInput& error) {  // a result, as the other ways Lemke can end
+    result.message = error.what();
     return result;
   }
   const Index n = q.size();
@@ -204,8 +188,9 @@ LemkeResult solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
         result.status = LemkeStatus::solved;
       } else {
         result.status = LemkeStatus::ray_termination;
-        result.message = "ray termination: the entering column has no positive entry "
-                         "(the LCP may have no solution)";
+        result.message =
+            "ray termination: the entering column has no positive entry "
+            "(the LCP may have no solution)";
       }
       return result;
     }

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
 
@@ -23,33 +23,6 @@ double LzbOptions::energy_tolerance(double h_jj) const {
   if (fixed_thresholds) return fixed_thresholds->energy;
   const double velocity = velocity_tolerance(h_jj);
   return velocity * velocity / (2.0 * h_jj);
-}
-
-bool LzbOptions::is_valid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (!(delta_p > 0.0 && std::isfinite(delta_p)))
-    return fail(invalid_value_message("delta_p", delta_p, "a finite value > 0 (N s)"));
-  if (!(termination_velocity_factor > 0.0 && std::isfinite(termination_velocity_factor)))
-    return fail(invalid_value_message("termination_velocity_factor",
-                                      termination_velocity_factor, "a finite value > 0"));
-  if (fixed_thresholds) {
-    const FixedThresholds& fixed = *fixed_thresholds;
-    if (!(fixed.velocity > 0.0 && std::isfinite(fixed.velocity)))
-      return fail(invalid_value_message("fixed_thresholds.velocity", fixed.velocity,
-                                        "a finite value > 0 (m/s)"));
-    if (!(fixed.energy > 0.0 && std::isfinite(fixed.energy)))
-      return fail(invalid_value_message("fixed_thresholds.energy", fixed.energy,
-                                        "a finite value > 0 (J)"));
-  }
-  if (max_steps <= 0)
-    return fail(invalid_value_message("max_steps", double(max_steps), "an integer > 0"));
-  if (sample_every < 0)
-    return fail(invalid_value_message("sample_every", double(sample_every),
-                                      "an integer >= 0 (0: start and end only)"));
-  return true;
 }
 
 namespace {
@@ -88,14 +61,14 @@ inline double power_of(double x, double p) { return std::exp2(p * std::log2(x));
 
 // The time the primary contact takes to absorb its principal step delta_p: the integral of
 // dP / F(E(P)) with F = c E^a and E linear in P from e0 to e1 (e1 not yet clamped at 0).
-// The seed's left-point rule dt = delta_p / F(e0) misses a fixed share of the integrable
+// The paper's left-point rule dt = delta_p / F(e0) misses a fixed share of the integrable
 // singularity where a contact starts or ends (F -> 0), so its times converge only as
-// delta_p^0.4; this rule is exact for the power law there and equal to the seed's rule in
+// delta_p^0.4; this rule is exact for the power law there and equal to the paper's rule in
 // the smooth interior. Written with the known F(e0) so only expm1 and log1p are needed.
 double primary_step_duration(double delta_p, double e0, double e1, double primary_force,
                              double coefficient, double power) {
   if (e0 <= 0.0) {  // the primary was entering compression: E grows from 0 to e1
-    if (e1 <= 0.0) return delta_p / primary_force;  // unresolved: the seed's rule
+    if (e1 <= 0.0) return delta_p / primary_force;  // unresolved: the paper's rule
     return delta_p / ((1.0 - power) * coefficient * std::pow(e1, power));
   }
   double length = delta_p;
@@ -175,8 +148,9 @@ void check_velocities(const Eigen::VectorXd& u_minus) {
       throw InvalidInput(invalid_value_message("u_minus(" + std::to_string(j) + ")", u_minus(j),
                                                "a finite velocity (m/s)"));
   if (u_minus.size() == 0 || u_minus.minCoeff() >= 0.0)
-    throw InvalidInput("no approaching contact: every u_minus(j) >= 0; allowed: at least one "
-                       "u_minus(j) < 0 (the convention is u < 0 approaching)");
+    throw InvalidInput(
+        "no approaching contact: every u_minus(j) >= 0; allowed: at least one "
+        "u_minus(j) < 0 (the convention is u < 0 approaching)");
 }
 
 Eigen::VectorXd checked_diagonal(const Eigen::VectorXd& diagonal) {
@@ -191,16 +165,14 @@ Eigen::VectorXd checked_diagonal(const Eigen::VectorXd& diagonal) {
 }  // namespace
 
 LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options) : options_(std::move(options)) {
-  std::string why;
-  if (!options_.is_valid(&why)) throw InvalidInput("LZB options: " + why);
+  validate(options_, "LZB options");
 }
 
 void LzbImpulseIntegrator::set_delta_p(double delta_p) {
   LzbOptions changed = options_;
   changed.delta_p = delta_p;
-  std::string why;
-  if (!changed.is_valid(&why)) throw InvalidInput("LZB options: " + why);
-  options_ = changed;
+  validate(changed, "LZB options");
+  options_ = std::move(changed);
 }
 
 LzbResult LzbImpulseIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
@@ -220,8 +192,7 @@ LzbResult LzbImpulseIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
   return run(SparseDelassus(compressed), u_minus, laws, observer);
 }
 
-LzbResult LzbImpulseIntegrator::integrate(const Eigen::MatrixXd& H,
-                                          const Eigen::VectorXd& u_minus,
+LzbResult LzbImpulseIntegrator::integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
                                           std::span<const ContactLaw> laws,
                                           ImpactObserver* observer) {
   check_sizes(H.rows(), H.cols(), u_minus, laws);
@@ -233,16 +204,15 @@ LzbResult LzbImpulseIntegrator::integrate(const Eigen::MatrixXd& H,
   return run(DenseDelassus{H}, u_minus, laws, observer);
 }
 
-void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal,
-                                   const Eigen::VectorXd& u_minus,
+void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
                                    std::span<const ContactLaw> laws) {
   const std::size_t m = laws.size();
-  for (std::size_t j = 0; j < m; ++j) laws[j].validate("contact " + std::to_string(j));
+  for (std::size_t j = 0; j < m; ++j) validate(laws[j], "contact " + std::to_string(j));
   for (Index c : options_.sampled_contacts)
     if (c < 0 || c >= Index(m))
-      throw InvalidInput(invalid_value_message("sampled_contacts entry", double(c),
-                                               "a contact index in [0, " + std::to_string(m) +
-                                                   ")"));
+      throw InvalidInput(
+          invalid_value_message("sampled_contacts entry", double(c),
+                                "a contact index in [0, " + std::to_string(m) + ")"));
 
   auto reset = [m](auto& buffer, auto value) { buffer.assign(m, value); };
   reset(force_coefficient_, 0.0);
@@ -321,8 +291,7 @@ void LzbImpulseIntegrator::notify(ImpactObserver* observer, std::int64_t step, d
 
 template <class Delassus>
 LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_minus,
-                                    std::span<const ContactLaw> laws,
-                                    ImpactObserver* observer) {
+                                    std::span<const ContactLaw> laws, ImpactObserver* observer) {
   // Local pointers keep the hot loop free of reloads through the vectors' members.
   const double delta_p = options_.delta_p;
   const double* coefficient = force_coefficient_.data();
@@ -394,9 +363,9 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
     }
     if (step >= options_.max_steps) {
       result.status = LzbStatus::step_limit;
-      result.message = "the impact did not end within max_steps = " +
-                       std::to_string(options_.max_steps) +
-                       " impulse steps; raise max_steps or delta_p";
+      result.message =
+          "the impact did not end within max_steps = " + std::to_string(options_.max_steps) +
+          " impulse steps; raise max_steps or delta_p";
       break;
     }
 
@@ -434,9 +403,9 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
           in_expansion_mono
               ? (1.0 - e * e) * (u[primary] < 0.0 ? energy[primary] : compression_work[primary])
               : 0.0;
-      const double share = primary_phase_end(
-          u[primary], du, energy[primary], delta_p, in_expansion_mono ? 1.0 : inverse_e2[primary],
-          release_level, !in_expansion_mono && e == 0.0);
+      const double share = primary_phase_end(u[primary], du, energy[primary], delta_p,
+                                             in_expansion_mono ? 1.0 : inverse_e2[primary],
+                                             release_level, !in_expansion_mono && e == 0.0);
       if (share < 1.0)
         for (std::size_t a = 0; a < active_count; ++a) step_impulse[active[a]] *= share;
     }
@@ -509,9 +478,10 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   result.duration = time;
   // finite inputs can still overflow (an exponent of 1e3 puts E^(eta/(1+eta)) past double)
   if (!(std::isfinite(time) && result.velocity.allFinite() && result.max_force.allFinite()))
-    throw Error("the impact's " + std::string(std::isfinite(time) ? "velocities or forces" : "duration") +
-                " overflowed double precision after " + std::to_string(step) +
-                " steps; the contact laws' stiffness K and exponent eta are out of the range it resolves");
+    throw Error(
+        "the impact's " + std::string(std::isfinite(time) ? "velocities or forces" : "duration") +
+        " overflowed double precision after " + std::to_string(step) +
+        " steps; the contact laws' stiffness K and exponent eta are out of the range it resolves");
   return result;
 }
 

@@ -2,30 +2,23 @@
 
 #include <limits>
 
-#include "mimpact/numerics/error.hpp"
+#include "contact_dynamics.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::plugins {
 
-AccelerationLcpProblem::AccelerationLcpProblem(numerics::LemkeOptions options)
-    : options_(options) {
-  std::string why;
-  if (!options_.is_valid(&why)) throw InvalidInput("acceleration-lcp: " + why);
+AccelerationLcpProblem::AccelerationLcpProblem(numerics::LemkeOptions options) : options_(options) {
+  validate(options_, "acceleration-lcp");
 }
 
-std::unique_ptr<kernel::ContactForceProblem> AccelerationLcpProblem::create(
-    const kernel::Parameters& parameters) {
-  parameters.allow_only("contact force problem \"acceleration-lcp\"", {"max_pivots"});
-  numerics::LemkeOptions options;
-  options.max_pivots = int(parameters.get_integer("max_pivots", options.max_pivots, 0, std::numeric_limits<int>::max()));
-  return std::make_unique<AccelerationLcpProblem>(options);
-}
+AccelerationLcpProblem::~AccelerationLcpProblem() = default;
 
 kernel::ContactForces AccelerationLcpProblem::solve(const kernel::NonSmoothDynamicalSystem& system,
-                                                    std::span<const Index> persistent,
-                                                    double time, const VectorXd& q,
-                                                    const VectorXd& v) {
+                                                    std::span<const Index> persistent, double time,
+                                                    const VectorXd& q, const VectorXd& v) {
   if (initialized_for_ != &system) {
-    dynamics_.initialize(system);
+    dynamics_ = std::make_unique<ContactDynamics>();
+    dynamics_->initialize(system);
     initialized_for_ = &system;
   }
   kernel::ContactForces forces;
@@ -33,21 +26,21 @@ kernel::ContactForces AccelerationLcpProblem::solve(const kernel::NonSmoothDynam
   forces.interactions.assign(persistent.begin(), persistent.end());
   forces.solved = true;
   if (persistent.empty()) return forces;
-  dynamics_.evaluate(time, q, v, persistent);
-  const VectorXd& b = dynamics_.b();
+  dynamics_->evaluate(time, q, v, persistent);
+  const VectorXd& b = dynamics_->b();
   if (b.minCoeff() >= 0.0) {  // nothing pushes a contact closed: lambda = 0
     forces.force = VectorXd::Zero(b.size());
     forces.acceleration = b;
     return forces;
   }
   ++lcp_count_;
-  const numerics::LemkeResult result = numerics::solve_lemke(MatrixXd(dynamics_.H()), b, options_);
+  const numerics::LemkeResult result = numerics::solve_lemke(MatrixXd(dynamics_->H()), b, options_);
   forces.force = result.z;
   forces.acceleration = result.w;
   forces.solved = result.solved();
   if (!forces.solved)
-    forces.message = "Lemke: " + std::string(numerics::to_string(result.status)) + ": " +
-                     result.message;
+    forces.message =
+        "Lemke: " + std::string(numerics::to_string(result.status)) + ": " + result.message;
   return forces;
 }
 

@@ -1,8 +1,8 @@
-#include "mimpact/plugins/contact_dynamics.hpp"
+#include "contact_dynamics.hpp"
 
 #include <algorithm>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::plugins {
 
@@ -111,8 +111,9 @@ const VectorXd& ContactDynamics::solve(const VectorXd& rhs) {
   if (!factor_valid_) {
     ldlt_.compute(H_);
     if (ldlt_.info() != Eigen::Success)
-      throw Error("the persistent contacts are redundant (H is singular); the bilateral "
-                  "contact forces are not determined");
+      throw Error(
+          "the persistent contacts are redundant (H is singular); the bilateral "
+          "contact forces are not determined");
     factor_valid_ = true;
   }
   lambda_ = ldlt_.solve(rhs);

@@ -1,107 +1,62 @@
 #include "mimpact/plugins/event_driven_integrator.hpp"
 
 #include <algorithm>
-#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <limits>
+#include <optional>
 
-#include "mimpact/numerics/error.hpp"
-#include "mimpact/numerics/root_bracketing.hpp"
+#include "contact_dynamics.hpp"
+#include "mimpact/common/error.hpp"
+#include "mimpact/numerics/internal/dense_output.hpp"
+#include "mimpact/numerics/internal/event_scan.hpp"
+#include "mimpact/numerics/internal/root_bracketing.hpp"
 
 namespace mimpact::plugins {
 
-namespace odeint = boost::numeric::odeint;
+using numerics::internal::Crossing;
 
-bool EventDrivenOptions::is_valid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
-  if (!positive(absolute_tolerance))
-    return fail(invalid_value_message("absolute_tolerance", absolute_tolerance, "> 0"));
-  if (!positive(relative_tolerance))
-    return fail(invalid_value_message("relative_tolerance", relative_tolerance, "> 0"));
-  if (!(max_step >= 0.0))
-    return fail(invalid_value_message("max_step", max_step, ">= 0 (s, 0 for no limit)"));
-  if (!positive(event_tolerance))
-    return fail(invalid_value_message("event_tolerance", event_tolerance, "> 0 (s)"));
-  if (samples_per_step < 1)
-    return fail(invalid_value_message("samples_per_step", samples_per_step, ">= 1"));
-  if (!(gap_tolerance >= 0.0))
-    return fail(invalid_value_message("gap_tolerance", gap_tolerance, ">= 0 (m)"));
-  if (!(velocity_tolerance >= 0.0))
-    return fail(invalid_value_message("velocity_tolerance", velocity_tolerance, ">= 0 (m/s)"));
-  if (!(rest_flight_time >= 0.0))
-    return fail(invalid_value_message("rest_flight_time", rest_flight_time, ">= 0 (s)"));
-  if (max_events_at_one_instant < 1)
-    return fail(invalid_value_message("max_events_at_one_instant", max_events_at_one_instant,
-                                      ">= 1"));
-  return true;
-}
+// What the event search watches at one time: every contact's gap (m) and normal velocity
+// (m/s), and the force holding each persistent contact (N).
+struct EventDrivenIntegrator::Watched {
+  VectorXd gaps, rates, forces;
+};
 
-// The smooth integration: Dormand-Prince 5(4) with dense output, on y = (q, v).
-struct EventDrivenIntegrator::Ode {
-  using State = std::vector<double>;
-  using Stepper = odeint::runge_kutta_dopri5<State>;
-  using Dense = odeint::result_of::make_dense_output<Stepper>::type;
-
-  explicit Ode(const EventDrivenOptions& options)
-      : dense(options.max_step > 0.0
-                  ? odeint::make_dense_output(options.absolute_tolerance,
-                                              options.relative_tolerance, options.max_step,
-                                              Stepper())
-                  : odeint::make_dense_output(options.absolute_tolerance,
-                                              options.relative_tolerance, Stepper())) {}
-
-  Dense dense;
-  State y, probe;
+// The smooth motion: the contact dynamics with the persistent contacts held, its integration
+// (Dormand-Prince 5(4) with dense output, on y = (q, v); only once some force acts), and the
+// event search's workspace.
+struct EventDrivenIntegrator::Motion {
+  ContactDynamics dynamics;
+  std::optional<numerics::internal::DenseOutput> dense;
+  numerics::internal::DenseOutput::State y, probe;
   VectorXd q, v, a;  // right-hand side workspace
-  bool started = false;
-  double last_step = 0.0;
+  VectorXd q_probe, v_probe;
+  Watched before, after;
+  VectorXd levels;  // the gap at which each contact counts as closing, in a search
 };
 
 EventDrivenIntegrator::EventDrivenIntegrator(EventDrivenOptions options) : options_(options) {
-  std::string why;
-  if (!options_.is_valid(&why)) throw InvalidInput("event-driven integrator: " + why);
+  validate(options_, "event-driven integrator");
 }
 
 EventDrivenIntegrator::~EventDrivenIntegrator() = default;
 
-std::unique_ptr<kernel::OneStepIntegrator> EventDrivenIntegrator::create(
-    const kernel::Parameters& parameters) {
-  parameters.allow_only("integrator \"event-driven\"",
-                        {"absolute_tolerance", "relative_tolerance", "max_step",
-                         "event_tolerance", "samples_per_step", "gap_tolerance",
-                         "velocity_tolerance", "rest_flight_time", "max_events_at_one_instant"});
-  EventDrivenOptions o;
-  o.absolute_tolerance = parameters.get("absolute_tolerance", o.absolute_tolerance);
-  o.relative_tolerance = parameters.get("relative_tolerance", o.relative_tolerance);
-  o.max_step = parameters.get("max_step", o.max_step);
-  o.event_tolerance = parameters.get("event_tolerance", o.event_tolerance);
-  o.samples_per_step = int(parameters.get_integer("samples_per_step", o.samples_per_step, 1, 1'000'000));
-  o.gap_tolerance = parameters.get("gap_tolerance", o.gap_tolerance);
-  o.velocity_tolerance = parameters.get("velocity_tolerance", o.velocity_tolerance);
-  o.rest_flight_time = parameters.get("rest_flight_time", o.rest_flight_time);
-  o.max_events_at_one_instant =
-      int(parameters.get_integer("max_events_at_one_instant", o.max_events_at_one_instant, 1,
-                                 std::numeric_limits<int>::max()));
-  return std::make_unique<EventDrivenIntegrator>(o);
-}
-
 void EventDrivenIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, double start,
-                                       kernel::ImpactProblem& impacts,
-                                       kernel::ContactForceProblem& forces) {
+                                       const kernel::EventProblems& problems) {
+  if (!problems.impacts || !problems.contact_forces)
+    throw InvalidInput("event-driven integrator: needs an impact and a contact force problem");
   system_ = &system;
-  impacts_ = &impacts;
-  forces_ = &forces;
+  impacts_ = problems.impacts;
+  forces_ = problems.contact_forces;
   time_ = start;
   system.gather_state(q_, v_);
-  dynamics_.initialize(system);
+  motion_ = std::make_unique<Motion>();
+  motion_->dynamics.initialize(system);
   const Index m = system.interaction_count();
-  for (VectorXd* buffer : {&gaps_, &rates_, &gaps_next_, &rates_next_}) buffer->setZero(m);
+  for (Watched* watched : {&motion_->before, &motion_->after}) {
+    watched->gaps.setZero(m);
+    watched->rates.setZero(m);
+  }
   velocity_resolution_.setZero(m);
-  ode_.reset();
   last_event_time_ = -std::numeric_limits<double>::infinity();
   events_at_instant_ = 0;
 
@@ -130,53 +85,15 @@ kernel::StepReport EventDrivenIntegrator::advance(double target) {
     return report;
   }
   if (target <= time_) return report;
-
-  if (free_flight_) {
-    Event event;
-    const bool found = search(time_, target, event);
-    state_at(found ? event.time : target, q_, v_);
-    time_ = found ? event.time : target;
-    if (found) {
-      process_event(event, report);
-    } else {
-      system_->scatter_state(q_, v_);
-    }
-    report.time = time_;
-    return report;
-  }
-
-  if (!ode_ || !ode_->started) restart_motion();
-  auto rhs = [this](const Ode::State& y, Ode::State& dydt, double t) {
-    const Index n = system_->dof();
-    ode_->q = Eigen::Map<const VectorXd>(y.data(), n);
-    ode_->v = Eigen::Map<const VectorXd>(y.data() + n, n);
-    const std::vector<Index>& persistent = system_->index_sets().persistent;
-    dynamics_.evaluate(t, ode_->q, ode_->v, persistent);
-    if (persistent.empty()) {
-      ode_->a = dynamics_.free_acceleration();
-    } else {
-      dynamics_.acceleration(dynamics_.bilateral_force(), ode_->a);
-    }
-    Eigen::Map<VectorXd>(dydt.data(), n) = ode_->v;
-    Eigen::Map<VectorXd>(dydt.data() + n, n) = ode_->a;
-  };
   while (true) {
-    if (ode_->dense.current_time() <= time_) {
-      const auto [from, to] = ode_->dense.do_step(rhs);
-      ode_->last_step = to - from;
-      ++report.smooth_steps;
-      continue;
-    }
-    const double end = std::min(ode_->dense.current_time(), target);
+    const double end = std::min(known_until(report), target);
     Event event;
     if (search(time_, end, event)) {
-      state_at(event.time, q_, v_);
-      time_ = event.time;
+      move_to(event.time);
       process_event(event, report);
       return report;
     }
-    state_at(end, q_, v_);
-    time_ = end;
+    move_to(end);
     if (end >= target) {
       system_->scatter_state(q_, v_);
       report.time = time_;
@@ -185,16 +102,51 @@ kernel::StepReport EventDrivenIntegrator::advance(double target) {
   }
 }
 
-void EventDrivenIntegrator::restart_motion() {
-  if (!ode_) ode_ = std::make_unique<Ode>(options_);
+double EventDrivenIntegrator::known_until(kernel::StepReport& report) {
+  if (free_flight_) return std::numeric_limits<double>::infinity();
+  if (!motion_->dense || !motion_->dense->started()) restart_motion();
+  numerics::internal::DenseOutput& dense = *motion_->dense;
+  while (dense.time() <= time_) {
+    dense.step([this](const std::vector<double>& y, std::vector<double>& dydt, double t) {
+      derivative(y, dydt, t);
+    });
+    ++report.smooth_steps;
+  }
+  return dense.time();
+}
+
+void EventDrivenIntegrator::derivative(const std::vector<double>& y, std::vector<double>& dydt,
+                                       double t) {
   const Index n = system_->dof();
-  ode_->y.resize(2 * n);
-  ode_->probe.resize(2 * n);
-  Eigen::Map<VectorXd>(ode_->y.data(), n) = q_;
-  Eigen::Map<VectorXd>(ode_->y.data() + n, n) = v_;
-  const double first_step = ode_->last_step > 0.0 ? ode_->last_step : 1e-4;
-  ode_->dense.initialize(ode_->y, time_, first_step);
-  ode_->started = true;
+  Motion& m = *motion_;
+  m.q = Eigen::Map<const VectorXd>(y.data(), n);
+  m.v = Eigen::Map<const VectorXd>(y.data() + n, n);
+  const std::vector<Index>& persistent = system_->index_sets().persistent;
+  m.dynamics.evaluate(t, m.q, m.v, persistent);
+  if (persistent.empty()) {
+    m.a = m.dynamics.free_acceleration();
+  } else {
+    m.dynamics.acceleration(m.dynamics.bilateral_force(), m.a);
+  }
+  Eigen::Map<VectorXd>(dydt.data(), n) = m.v;
+  Eigen::Map<VectorXd>(dydt.data() + n, n) = m.a;
+}
+
+void EventDrivenIntegrator::restart_motion() {
+  Motion& m = *motion_;
+  if (!m.dense) m.dense.emplace(options_.ode);
+  const Index n = system_->dof();
+  m.y.resize(2 * n);
+  m.probe.resize(2 * n);
+  Eigen::Map<VectorXd>(m.y.data(), n) = q_;
+  Eigen::Map<VectorXd>(m.y.data() + n, n) = v_;
+  const double first_step = m.dense->last_step() > 0.0 ? m.dense->last_step() : 1e-4;
+  m.dense->restart(m.y, time_, first_step);
+}
+
+void EventDrivenIntegrator::move_to(double t) {
+  state_at(t, q_, v_);
+  time_ = t;
 }
 
 void EventDrivenIntegrator::state_at(double t, VectorXd& q, VectorXd& v) {
@@ -204,55 +156,61 @@ void EventDrivenIntegrator::state_at(double t, VectorXd& q, VectorXd& v) {
     return;
   }
   const Index n = system_->dof();
-  ode_->dense.calc_state(t, ode_->probe);
-  q = Eigen::Map<const VectorXd>(ode_->probe.data(), n);
-  v = Eigen::Map<const VectorXd>(ode_->probe.data() + n, n);
+  Motion& m = *motion_;
+  m.dense->state_at(t, m.probe);
+  q = Eigen::Map<const VectorXd>(m.probe.data(), n);
+  v = Eigen::Map<const VectorXd>(m.probe.data() + n, n);
 }
 
-void EventDrivenIntegrator::watch(double t, const VectorXd& q, const VectorXd& v, VectorXd& gaps,
-                                  VectorXd& rates, VectorXd& forces) {
+void EventDrivenIntegrator::watch(double t, Watched& values) {
+  Motion& m = *motion_;
+  state_at(t, m.q_probe, m.v_probe);
   const std::vector<Index>& persistent = system_->index_sets().persistent;
   for (Index j = 0; j < system_->interaction_count(); ++j) {
-    gaps(j) = system_->gap(j, q);
-    rates(j) = system_->velocity(j, q, v);
+    values.gaps(j) = system_->gap(j, m.q_probe);
+    values.rates(j) = system_->velocity(j, m.q_probe, m.v_probe);
   }
   if (persistent.empty()) return;
   if (free_flight_) {  // no force, constant W: nothing presses a persistent contact
-    forces.setZero(Index(persistent.size()));
+    values.forces.setZero(Index(persistent.size()));
     return;
   }
-  dynamics_.evaluate(t, q, v, persistent);
-  forces = dynamics_.bilateral_force();
+  m.dynamics.evaluate(t, m.q_probe, m.v_probe, persistent);
+  values.forces = m.dynamics.bilateral_force();
 }
 
 double EventDrivenIntegrator::gap_function(Index j, double t) {
-  state_at(t, q_probe_, v_probe_);
-  return system_->gap(j, q_probe_);
+  Motion& m = *motion_;
+  state_at(t, m.q_probe, m.v_probe);
+  return system_->gap(j, m.q_probe);
 }
 
 double EventDrivenIntegrator::rate_function(Index j, double t) {
-  state_at(t, q_probe_, v_probe_);
-  return system_->velocity(j, q_probe_, v_probe_);
+  Motion& m = *motion_;
+  state_at(t, m.q_probe, m.v_probe);
+  return system_->velocity(j, m.q_probe, m.v_probe);
 }
 
 double EventDrivenIntegrator::force_function(Index k, double t) {
-  state_at(t, q_probe_, v_probe_);
-  dynamics_.evaluate(t, q_probe_, v_probe_, system_->index_sets().persistent);
-  return dynamics_.bilateral_force()(k);
+  Motion& m = *motion_;
+  state_at(t, m.q_probe, m.v_probe);
+  m.dynamics.evaluate(t, m.q_probe, m.v_probe, system_->index_sets().persistent);
+  return m.dynamics.bilateral_force()(k);
 }
 
-double EventDrivenIntegrator::closing_time(Index j, double t0, double t1, double& level) {
-  const double tolerance = options_.event_tolerance;
-  const double g0 = gaps_(j), g1 = gaps_next_(j), u0 = rates_(j), u1 = rates_next_(j);
+double EventDrivenIntegrator::closing_time(Index j, double t0, double t1, const Watched& before,
+                                           const Watched& after, double& level) {
+  const double tolerance = options_.ode.event_tolerance;
+  const double g0 = before.gaps(j), g1 = after.gaps(j), u0 = before.rates(j), u1 = after.rates(j);
   // between two samples the gap has at most one turn, found where its rate u changes sign
   auto turn = [&](double sign) {  // the time of the turn: u crosses 0 from sign*u > 0
-    return numerics::narrow_crossing([&](double s) { return sign * rate_function(j, s); }, t0,
-                                     t1, sign * u0, sign * u1, tolerance)
+    return numerics::narrow_crossing([&](double s) { return sign * rate_function(j, s); }, t0, t1,
+                                     sign * u0, sign * u1, tolerance)
         .upper;
   };
   auto crossing = [&](double lower, double upper, double f_lower, double f_upper) {
-    return numerics::narrow_crossing([&](double s) { return gap_function(j, s) - level; },
-                                     lower, upper, f_lower, f_upper, tolerance)
+    return numerics::narrow_crossing([&](double s) { return gap_function(j, s) - level; }, lower,
+                                     upper, f_lower, f_upper, tolerance)
         .upper;
   };
   if (level < 0.0 && u0 > 0.0 && u1 < 0.0) {
@@ -277,63 +235,52 @@ double EventDrivenIntegrator::closing_time(Index j, double t0, double t1, double
 }
 
 bool EventDrivenIntegrator::search(double a, double b, Event& event) {
+  Motion& m = *motion_;
   const std::vector<Index>& persistent = system_->index_sets().persistent;
   std::vector<char> held(std::size_t(system_->interaction_count()), 0);
   for (Index j : persistent) held[std::size_t(j)] = 1;
-  const double tolerance = options_.event_tolerance;
-  state_at(a, q_probe_, v_probe_);
-  watch(a, q_probe_, v_probe_, gaps_, rates_, forces_probe_);
-  // an open contact closes when its gap reaches 0; one that starts closed (and is not held)
-  // when it sinks a gap tolerance below where it starts, or reaches 0 again after opening
-  levels_.resize(gaps_.size());
-  for (Index j = 0; j < gaps_.size(); ++j)
-    levels_(j) = gaps_(j) > 0.0 ? 0.0 : gaps_(j) - std::max(options_.gap_tolerance, 1e-300);
-  double t_previous = a;
-  for (int k = 1; k <= options_.samples_per_step; ++k) {
-    const double t = k == options_.samples_per_step
-                         ? b
-                         : a + (b - a) * double(k) / double(options_.samples_per_step);
-    state_at(t, q_probe_, v_probe_);
-    watch(t, q_probe_, v_probe_, gaps_next_, rates_next_, forces_next_);
-
-    struct Root {
-      Index index;
-      bool detaching;
-      double time;
-    };
-    std::vector<Root> roots;
+  const double tolerance = options_.ode.event_tolerance;
+  enum Kind { closing, detaching };
+  auto watch_at = [this](double t, Watched& values) { watch(t, values); };
+  bool levels_set = false;
+  auto locate = [&](double t0, double t1, const Watched& before, const Watched& after,
+                    std::vector<Crossing>& found) {
+    // an open contact closes when its gap reaches 0; one that starts closed (and is not held)
+    // when it sinks a gap tolerance below where it starts, or reaches 0 again after opening
+    if (!levels_set) {
+      m.levels.resize(before.gaps.size());
+      for (Index j = 0; j < before.gaps.size(); ++j)
+        m.levels(j) =
+            before.gaps(j) > 0.0 ? 0.0 : before.gaps(j) - std::max(options_.gap_tolerance, 1e-300);
+      levels_set = true;
+    }
     for (Index j = 0; j < system_->interaction_count(); ++j) {
       if (held[std::size_t(j)]) continue;
-      const double closing = closing_time(j, t_previous, t, levels_(j));
-      if (closing < std::numeric_limits<double>::infinity()) roots.push_back({j, false, closing});
+      const double time = closing_time(j, t0, t1, before, after, m.levels(j));
+      if (time < std::numeric_limits<double>::infinity()) found.push_back({j, closing, time});
     }
     for (std::size_t p = 0; p < persistent.size(); ++p) {
-      const Index k_p = Index(p);
-      if (!(forces_probe_(k_p) > 0.0 && forces_next_(k_p) <= 0.0)) continue;
-      const numerics::Bracket crossing = numerics::narrow_crossing(
-          [&](double s) { return force_function(k_p, s); }, t_previous, t, forces_probe_(k_p),
-          forces_next_(k_p), tolerance);
-      roots.push_back({persistent[p], true, crossing.upper});
+      const Index k = Index(p);
+      if (!(before.forces(k) > 0.0 && after.forces(k) <= 0.0)) continue;
+      const numerics::Bracket crossing =
+          numerics::narrow_crossing([&](double s) { return force_function(k, s); }, t0, t1,
+                                    before.forces(k), after.forces(k), tolerance);
+      found.push_back({persistent[p], detaching, crossing.upper});
     }
-    if (!roots.empty()) {
-      double earliest = roots.front().time;
-      for (const Root& root : roots) earliest = std::min(earliest, root.time);
-      event = {earliest, {}, {}};
-      for (const Root& root : roots)
-        if (root.time <= earliest + tolerance)
-          (root.detaching ? event.detaching : event.closing).push_back(root.index);
-      return true;
-    }
-    std::swap(gaps_, gaps_next_);
-    std::swap(rates_, rates_next_);
-    std::swap(forces_probe_, forces_next_);
-    t_previous = t;
+  };
+  const std::vector<Crossing> found = numerics::internal::scan_events(
+      a, b, options_.ode.samples_per_step, tolerance, m.before, m.after, watch_at, locate);
+  if (found.empty()) return false;
+  event = {found.front().time, {}, {}};
+  for (const Crossing& crossing : found) {
+    event.time = std::min(event.time, crossing.time);
+    (crossing.kind == detaching ? event.detaching : event.closing).push_back(crossing.index);
   }
-  return false;
+  return true;
 }
 
 void EventDrivenIntegrator::check_event_loop(double t) {
-  if (t - last_event_time_ <= options_.event_tolerance) {
+  if (t - last_event_time_ <= options_.ode.event_tolerance) {
     if (++events_at_instant_ > options_.max_events_at_one_instant)
       throw Error("more than " + std::to_string(options_.max_events_at_one_instant) +
                   " events at t = " + to_text(t) +
@@ -367,6 +314,8 @@ void EventDrivenIntegrator::process_event(const Event& event, kernel::StepReport
   velocity_resolution_.setZero();
   if (impact) {
     kernel::ImpactReport solved = impacts_->solve(*system_, closed_, time_);
+    if (solved.status != kernel::ImpactStatus::terminated)
+      throw Error("impact at t = " + to_text(time_) + " s: " + solved.message);
     system_->gather_state(q_, v_);
     if (solved.velocity_resolution.size() == Index(closed_.size()))
       for (std::size_t k = 0; k < closed_.size(); ++k)
@@ -374,19 +323,29 @@ void EventDrivenIntegrator::process_event(const Event& event, kernel::StepReport
     report.impact = std::move(solved);
   }
   settle_pending_ = true;
-  if (ode_) ode_->started = false;
+  if (motion_->dense) motion_->dense->invalidate();
 }
 
+// Algorithm 6 of Nguyen & Brogliato (2011), before the next smooth motion: penetrations are
+// undone, contacts come to rest, and the contact force problem decides which stay closed.
+// A contact sent into a real approach by any of this makes an impact now instead.
 void EventDrivenIntegrator::settle(kernel::StepReport& report) {
-  // Contacts come to rest when |u| is within what the last impact resolves or their next
-  // flight would be too short; the least-energy velocity change then sets their u to 0.
-  // That change moves the other closed contacts too, so the classification repeats until
-  // nothing changes; a contact sent into a real approach makes an impact now.
-  // Events are placed just after a crossing, so closed contacts penetrate a little, and a
-  // contact that closes again while already closed sinks deeper each time: the least
-  // mass-weighted shift of positions, dq = M^-1 W lambda with H lambda = -g over the
-  // penetrating contacts, brings them back to g = 0. Shifting one may press a neighbour in:
-  // the set grows until no closed contact penetrates.
+  restore_penetrations();
+  const std::vector<Index> resting = bring_to_rest();
+  if (impact_pending_) {
+    system_->scatter_state(q_, v_);
+    return;
+  }
+  hold_resting(resting, report);
+}
+
+// Events are placed just after a crossing, so closed contacts penetrate a little, and a
+// contact that closes again while already closed sinks deeper each time: the least
+// mass-weighted shift of positions, dq = M^-1 W lambda with H lambda = -g over the
+// penetrating contacts, brings them back to g = 0. Shifting one may press a neighbour in:
+// the set grows until no closed contact penetrates.
+void EventDrivenIntegrator::restore_penetrations() {
+  ContactDynamics& dynamics = motion_->dynamics;
   std::vector<Index> penetrating;
   for (std::size_t round = 0; round <= closed_.size(); ++round) {
     bool added = false;
@@ -398,17 +357,25 @@ void EventDrivenIntegrator::settle(kernel::StepReport& report) {
       }
     if (!added) break;
     VectorXd g(Index(penetrating.size()));
-    for (std::size_t k = 0; k < penetrating.size(); ++k) g(Index(k)) = system_->gap(penetrating[k], q_);
-    dynamics_.evaluate(time_, q_, v_, penetrating);
-    const VectorXd shift = dynamics_.solve(-g);
-    q_ += dynamics_.mobility() * shift;
+    for (std::size_t k = 0; k < penetrating.size(); ++k)
+      g(Index(k)) = system_->gap(penetrating[k], q_);
+    dynamics.evaluate(time_, q_, v_, penetrating);
+    const VectorXd shift = dynamics.solve(-g);
+    q_ += dynamics.mobility() * shift;
   }
+}
 
+// Contacts come to rest when |u| is within what the last impact resolves or their next
+// flight would be too short; the least-energy velocity change then sets their u to 0. That
+// change moves the other closed contacts too, so the classification repeats until nothing
+// changes. Sets impact_pending_ when a closed contact approaches for real.
+std::vector<Index> EventDrivenIntegrator::bring_to_rest() {
+  ContactDynamics& dynamics = motion_->dynamics;
   std::vector<Index> resting;
   std::vector<char> rests(std::size_t(system_->interaction_count()), 0);
   for (std::size_t round = 0; round <= closed_.size(); ++round) {
-    dynamics_.evaluate(time_, q_, v_, {});
-    const VectorXd& free_acceleration = dynamics_.free_acceleration();
+    dynamics.evaluate(time_, q_, v_, {});
+    const VectorXd& free_acceleration = dynamics.free_acceleration();
     bool added = false;
     for (Index j : closed_) {
       if (rests[std::size_t(j)]) continue;
@@ -419,11 +386,11 @@ void EventDrivenIntegrator::settle(kernel::StepReport& report) {
       const double resolution = std::max(options_.velocity_tolerance, velocity_resolution_(j));
       if (u < -resolution) {
         impact_pending_ = true;
-        system_->scatter_state(q_, v_);
-        return;
+        return resting;
       }
       double b = system_->jacobian_rate(j, q_, v_);
-      system_->for_each_jacobian_entry(j, q_, [&](Index i, double w) { b += w * free_acceleration(i); });
+      system_->for_each_jacobian_entry(j, q_,
+                                       [&](Index i, double w) { b += w * free_acceleration(i); });
       const double rest_speed = b < 0.0 ? 0.5 * -b * options_.rest_flight_time : 0.0;
       if (u <= std::max(options_.velocity_tolerance, rest_speed)) {
         resting.push_back(j);
@@ -433,15 +400,22 @@ void EventDrivenIntegrator::settle(kernel::StepReport& report) {
     }
     if (!added) break;
     VectorXd u(Index(resting.size()));
-    for (std::size_t k = 0; k < resting.size(); ++k) u(Index(k)) = system_->velocity(resting[k], q_, v_);
+    for (std::size_t k = 0; k < resting.size(); ++k)
+      u(Index(k)) = system_->velocity(resting[k], q_, v_);
     if (u.cwiseAbs().maxCoeff() > 0.0) {
-      dynamics_.evaluate(time_, q_, v_, resting);
-      const VectorXd impulse = dynamics_.solve(-u);
-      v_ += dynamics_.mobility() * impulse;
+      dynamics.evaluate(time_, q_, v_, resting);
+      const VectorXd impulse = dynamics.solve(-u);
+      v_ += dynamics.mobility() * impulse;
     }
   }
+  return resting;
+}
 
-  // which resting contacts stay closed: the acceleration-level LCP
+// Which resting contacts stay closed: the acceleration-level problem. They are held in the
+// smooth motion that follows, which is q + v t when no force acts and every held relation is
+// linear.
+void EventDrivenIntegrator::hold_resting(const std::vector<Index>& resting,
+                                         kernel::StepReport& report) {
   std::vector<Index> persistent;
   if (!resting.empty()) {
     kernel::ContactForces forces = forces_->solve(*system_, resting, time_, q_, v_);
@@ -464,7 +438,7 @@ void EventDrivenIntegrator::settle(kernel::StepReport& report) {
   bool linear = true;
   for (Index j : persistent) linear = linear && system_->interaction(j).relation().is_linear();
   free_flight_ = !system_->has_force() && linear;
-  if (ode_) ode_->started = false;
+  if (motion_->dense) motion_->dense->invalidate();
 }
 
 kernel::ContactForces EventDrivenIntegrator::persistent_forces() {
@@ -474,8 +448,8 @@ kernel::ContactForces EventDrivenIntegrator::persistent_forces() {
   forces.interactions = persistent;
   forces.solved = true;
   if (persistent.empty()) return forces;
-  dynamics_.evaluate(time_, q_, v_, persistent);
-  forces.force = dynamics_.bilateral_force();
+  motion_->dynamics.evaluate(time_, q_, v_, persistent);
+  forces.force = motion_->dynamics.bilateral_force();
   forces.acceleration = VectorXd::Zero(forces.force.size());
   return forces;
 }

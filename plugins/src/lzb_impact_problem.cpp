@@ -1,39 +1,28 @@
 #include "mimpact/plugins/lzb_impact_problem.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
 
+#include "mimpact/common/error.hpp"
 #include "mimpact/numerics/delassus.hpp"
-#include "mimpact/numerics/error.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
 
 namespace mimpact::plugins {
 
 using kernel::Index;
 
-LzbImpactProblem::LzbImpactProblem(LzbImpactOptions options)
-    : options_(std::move(options)), integrator_(options_.integrator) {
-  if (!(options_.relative_delta_p >= 0.0 && options_.relative_delta_p < 1.0))
-    throw InvalidInput(invalid_value_message("relative_delta_p", options_.relative_delta_p,
-                                             "0 (off) or a share in (0, 1)"));
-  if (options_.dense_up_to < 0)
-    throw InvalidInput(invalid_value_message("dense_up_to", double(options_.dense_up_to), ">= 0"));
+namespace {
+
+LzbImpactOptions checked(LzbImpactOptions options) {
+  validate(options, "impact problem \"lzb\"");
+  return options;
 }
 
-std::unique_ptr<kernel::ImpactProblem> LzbImpactProblem::create(
-    const kernel::Parameters& parameters) {
-  parameters.allow_only("impact problem \"lzb\"",
-                        {"delta_p", "relative_delta_p", "termination_velocity_factor",
-                         "max_steps", "dense_up_to"});
-  LzbImpactOptions options;
-  options.integrator.delta_p = parameters.get("delta_p", options.integrator.delta_p);
-  options.integrator.termination_velocity_factor = parameters.get(
-      "termination_velocity_factor", options.integrator.termination_velocity_factor);
-  options.relative_delta_p = parameters.get("relative_delta_p", options.relative_delta_p);
-  options.integrator.max_steps = parameters.get_integer("max_steps", options.integrator.max_steps, 1,
-                                                        std::int64_t(1) << 62);
-  options.dense_up_to = Index(parameters.get_integer("dense_up_to", options.dense_up_to, 0, std::int64_t(1) << 31));
-  return std::make_unique<LzbImpactProblem>(options);
-}
+}  // namespace
+
+LzbImpactProblem::LzbImpactProblem(LzbImpactOptions options)
+    : options_(checked(std::move(options))), integrator_(options_.integrator) {}
 
 void LzbImpactProblem::check_law(const kernel::NonSmoothLaw& law, const std::string& which) const {
   if (!dynamic_cast<const LzbLaw*>(&law))
@@ -42,11 +31,47 @@ void LzbImpactProblem::check_law(const kernel::NonSmoothLaw& law, const std::str
                        "plugins::LzbLaw");
 }
 
+namespace {
+
+// Hands the samples on with the contacts named by their interaction in the system, not by
+// their place among the closed contacts of this impact.
+class InteractionSamples : public numerics::ImpactObserver {
+ public:
+  InteractionSamples(std::span<const Index> closed, numerics::ImpactObserver& next)
+      : closed_(closed), next_(next) {}
+  void observe(const numerics::ImpactSample& sample) override {
+    interactions_.resize(sample.contacts.size());
+    for (std::size_t k = 0; k < sample.contacts.size(); ++k)
+      interactions_[k] = closed_[std::size_t(sample.contacts[k])];
+    numerics::ImpactSample renamed = sample;
+    renamed.contacts = interactions_;
+    next_.observe(renamed);
+  }
+
+ private:
+  std::span<const Index> closed_;
+  numerics::ImpactObserver& next_;
+  std::vector<Index> interactions_;
+};
+
+// The places among `closed` of the sampled interactions that take part.
+std::vector<Index> sampled_places(std::span<const Index> closed,
+                                  const std::vector<Index>& sampled) {
+  std::vector<Index> places;
+  for (std::size_t k = 0; k < closed.size(); ++k)
+    if (std::find(sampled.begin(), sampled.end(), closed[k]) != sampled.end())
+      places.push_back(Index(k));
+  return places;
+}
+
+}  // namespace
+
 kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& system,
                                              std::span<const Index> closed, double time) {
   const auto start = std::chrono::steady_clock::now();
-  Eigen::VectorXd q, v;
-  system.gather_state(q, v);
+  kernel::ImpactReport report;
+  Eigen::VectorXd q;
+  system.gather_state(q, report.generalized_velocity_before);
   laws_.clear();
   for (Index j : closed)
     laws_.push_back(static_cast<const LzbLaw&>(system.interaction(j).law()).contact_law());
@@ -56,34 +81,49 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
       system.mass_is_diagonal()
           ? numerics::Delassus(W, system.mass_matrix(q).diagonal().cwiseInverse())
           : numerics::Delassus(W, system.mass_matrix(q));
-  const Eigen::VectorXd u_minus = W.transpose() * v;
+  const Eigen::VectorXd u_minus = W.transpose() * report.generalized_velocity_before;
   if (options_.relative_delta_p > 0.0) {
     const double natural_impulse =
         (-u_minus).cwiseMax(0.0).cwiseQuotient(Eigen::VectorXd(delassus.H().diagonal())).maxCoeff();
     if (natural_impulse > 0.0) integrator_.set_delta_p(options_.relative_delta_p * natural_impulse);
   }
-  last_ = Index(closed.size()) <= options_.dense_up_to
-              ? integrator_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer_)
-              : integrator_.integrate(delassus.H(), u_minus, laws_, observer_);
-  if (last_.status != numerics::LzbStatus::terminated)
-    throw Error("impact at t = " + to_text(time) + ": " + last_.message);
+  std::optional<InteractionSamples> samples;
+  if (observer_) {
+    samples.emplace(closed, *observer_);
+    const std::vector<Index>& sampled = options_.integrator.sampled_contacts;
+    if (!sampled.empty()) integrator_.set_sampled_contacts(sampled_places(closed, sampled));
+  }
+  numerics::ImpactObserver* observer = samples ? &*samples : nullptr;
+  const numerics::LzbResult result =
+      Index(closed.size()) <= options_.dense_up_to
+          ? integrator_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
+          : integrator_.integrate(delassus.H(), u_minus, laws_, observer);
 
-  v += delassus.mobility() * last_.impulse;
-  system.scatter_state(q, v);
-
-  kernel::ImpactReport report;
+  report.status = result.status == numerics::LzbStatus::terminated
+                      ? kernel::ImpactStatus::terminated
+                      : kernel::ImpactStatus::step_limit;
+  report.message = result.message;
   report.time = time;
   report.interactions.assign(closed.begin(), closed.end());
   report.velocity_before = u_minus;
-  report.velocity_after = last_.velocity;
-  report.impulse = last_.impulse;
-  report.max_force = last_.max_force;
-  report.time_of_max_force = last_.time_of_max_force;
+  report.velocity_after = result.velocity;
+  report.impulse = result.impulse;
+  report.max_force = result.max_force;
+  report.time_of_max_force = result.time_of_max_force;
   // the integrator's termination tolerance tol_u_j
   report.velocity_resolution = delassus.H().diagonal().unaryExpr(
       [&](double h_jj) { return integrator_.options().velocity_tolerance(h_jj); });
-  report.steps = last_.steps;
-  report.duration = last_.duration;
+  report.steps = result.steps;
+  report.contact_steps = result.contact_steps;
+  report.residual_energy = result.residual_energy;
+  report.duration = result.duration;
+  if (report.status == kernel::ImpactStatus::terminated) {
+    report.generalized_velocity_after =
+        report.generalized_velocity_before + delassus.mobility() * result.impulse;
+    system.scatter_state(q, report.generalized_velocity_after);
+  } else {
+    report.generalized_velocity_after = report.generalized_velocity_before;  // no outcome
+  }
   report.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

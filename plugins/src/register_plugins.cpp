@@ -9,10 +9,10 @@
 namespace mimpact::plugins {
 
 void register_plugins() {
-  kernel::integrators().add("event-driven", EventDrivenIntegrator::create);
-  kernel::integrators().add("compliant", CompliantIntegrator::create);
-  kernel::impact_problems().add("lzb", LzbImpactProblem::create);
-  kernel::contact_force_problems().add("acceleration-lcp", AccelerationLcpProblem::create);
+  kernel::integrators().add<EventDrivenIntegrator>("event-driven");
+  kernel::integrators().add<CompliantIntegrator>("compliant");
+  kernel::impact_problems().add<LzbImpactProblem>("lzb");
+  kernel::contact_force_problems().add<AccelerationLcpProblem>("acceleration-lcp");
 }
 
 }  // namespace mimpact::plugins

@@ -10,10 +10,12 @@ namespace mimpact::models {
 namespace {
 
 struct Forces : kernel::SimulationObserver {
-  void on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
-    if (!step.contact_forces) return;
-    if (!first) first = *step.contact_forces;
-    last = *step.contact_forces;
+  kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
+    if (step.contact_forces) {
+      if (!first) first = *step.contact_forces;
+      last = *step.contact_forces;
+    }
+    return kernel::EventStatus::proceed();
   }
   std::optional<kernel::ContactForces> first, last;
 };

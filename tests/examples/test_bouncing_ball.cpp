@@ -29,7 +29,8 @@ TEST(BouncingBall, GeometricSeriesThenRestUnderItsWeight) {
     const double outgoing = std::pow(e, k + 1) * first_speed;
     const double apex = record.heights[k] + record.speeds[k] * record.speeds[k] / (2.0 * g);
     EXPECT_NEAR(record.times[k], time, 1e-6 * time) << "bounce " << k + 1;
-    EXPECT_NEAR(apex - ball.radius, outgoing * outgoing / (2.0 * g), 1e-6 * outgoing * outgoing / (2.0 * g))
+    EXPECT_NEAR(apex - ball.radius, outgoing * outgoing / (2.0 * g),
+                1e-6 * outgoing * outgoing / (2.0 * g))
         << "bounce " << k + 1;
     time += 2.0 * outgoing / g;
   }

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "mimpact/chain/hertz.hpp"
+#include "mimpact/chains/hertz.hpp"
 #include "mimpact/models/newtons_cradle.hpp"
 #include "mimpact/models/simulation_setup.hpp"
 #include "mimpact/numerics/delassus.hpp"
@@ -89,7 +89,8 @@ TEST(NewtonsCradle, ElasticCradleKeepsItsEnergy) {
     const kernel::RunSummary summary = simulation.run(0.0, 1.0);
     EXPECT_GE(summary.impacts, 2);  // out and back
     errors.push_back(std::abs(cradle.energy(*system) / start - 1.0));
-    std::printf("relative delta_p %g: energy error after 1 s %.3g\n", relative_delta_p, errors.back());
+    std::printf("relative delta_p %g: energy error after 1 s %.3g\n", relative_delta_p,
+                errors.back());
   }
   EXPECT_LE(errors[2], 1e-7);
   EXPECT_GT(errors[0] / errors[1], 30.0);

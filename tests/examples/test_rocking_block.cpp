@@ -14,15 +14,18 @@ namespace {
 
 struct Rocking : kernel::SimulationObserver {
   const RockingBlock* block = nullptr;
-  void on_impact(const kernel::Simulation& simulation, const kernel::ImpactReport& report) override {
+  void on_impact(const kernel::Simulation& simulation,
+                 const kernel::ImpactReport& report) override {
     const double energy = block->energy(simulation.system());
     impacts.push_back(report);
     energies_after.push_back(energy);
     horizontal.push_back(simulation.system().system(0).velocity()(0));
   }
-  void on_step(const kernel::Simulation& simulation, const kernel::StepReport& step) override {
+  kernel::EventStatus on_step(const kernel::Simulation& simulation,
+                              const kernel::StepReport& step) override {
     energies_at_steps.push_back({step.time, block->energy(simulation.system()), step.event});
     if (step.contact_forces) forces = *step.contact_forces;
+    return kernel::EventStatus::proceed();
   }
   struct Sample {
     double time, energy;

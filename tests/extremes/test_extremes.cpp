@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::numerics {
@@ -26,7 +26,8 @@ namespace {
 using Eigen::VectorXd;
 
 constexpr double kBeadMass = 0.0326;  // kg: C1's 10 mm steel bead
-constexpr double kStiffness = 1e10;   // N / m^eta; uniform K leaves LZB's velocities independent of it
+constexpr double kStiffness =
+    1e10;  // N / m^eta; uniform K leaves LZB's velocities independent of it
 
 // Bodies on a line, contact j between bodies j and j + 1 (u_j = v_(j+1) - v_j, < 0 approaching).
 struct Line {
@@ -71,12 +72,13 @@ struct Line {
 
 ContactLaw law(double exponent = 1.5, double restitution = 1.0,
                ComplianceModel model = ComplianceModel::bi_stiffness) {
-  return {.stiffness = kStiffness, .exponent = exponent, .restitution = restitution, .model = model};
+  return {
+      .stiffness = kStiffness, .exponent = exponent, .restitution = restitution, .model = model};
 }
 
 // A striker of `striker_mass` at `speed` against `beads` beads at rest, all touching.
-Line struck_chain(int beads, double speed, const ContactLaw& contact, double striker_mass = kBeadMass,
-                  double bead_mass = kBeadMass) {
+Line struck_chain(int beads, double speed, const ContactLaw& contact,
+                  double striker_mass = kBeadMass, double bead_mass = kBeadMass) {
   Line line;
   line.mass = VectorXd::Constant(beads + 1, bead_mass);
   line.mass(0) = striker_mass;
@@ -113,15 +115,16 @@ struct Outcome {
 // Runs the impact at delta_p = share x natural impulse and asserts what every extreme must
 // keep. `watch_energy` samples the whole energy at every step (small lines only);
 // `one_compression` checks the step bound (each contact compressed once).
-Outcome expect_sound(const Line& line, double share, const std::string& what, bool watch_energy = true,
-                     bool one_compression = false) {
+Outcome expect_sound(const Line& line, double share, const std::string& what,
+                     bool watch_energy = true, bool one_compression = false) {
   LzbOptions options;
   options.delta_p = share * line.natural_impulse();
   options.sample_every = watch_energy ? 1 : 0;
   EnergyWatch watch(line);
   LzbImpulseIntegrator integrator(options);
   Outcome out;
-  out.result = integrator.integrate(line.H(), line.u_minus(), line.laws, watch_energy ? &watch : nullptr);
+  out.result =
+      integrator.integrate(line.H(), line.u_minus(), line.laws, watch_energy ? &watch : nullptr);
   const LzbResult& r = out.result;
   EXPECT_EQ(r.status, LzbStatus::terminated) << what << ": " << r.message;
   EXPECT_TRUE(r.impulse.allFinite() && r.velocity.allFinite() && r.max_force.allFinite() &&
@@ -129,10 +132,14 @@ Outcome expect_sound(const Line& line, double share, const std::string& what, bo
       << what;
   EXPECT_TRUE((r.impulse.array() >= 0.0).all()) << what;
   out.velocity = line.velocity_after(r.impulse);
-  EXPECT_NEAR(line.momentum(out.velocity), line.momentum(line.velocity), 1e-12 * line.momentum_scale()) << what;
+  EXPECT_NEAR(line.momentum(out.velocity), line.momentum(line.velocity),
+              1e-12 * line.momentum_scale())
+      << what;
 
-  const double before = line.kinetic_energy(line.velocity), after = line.kinetic_energy(out.velocity);
-  const bool elastic = std::all_of(line.laws.begin(), line.laws.end(), [](const ContactLaw& l) { return l.restitution == 1.0; });
+  const double before = line.kinetic_energy(line.velocity),
+               after = line.kinetic_energy(out.velocity);
+  const bool elastic = std::all_of(line.laws.begin(), line.laws.end(),
+                                   [](const ContactLaw& l) { return l.restitution == 1.0; });
   // O(delta_p): the relative energy gain is at most the step's share of the natural impulse
   EXPECT_LE(after, before * (1.0 + share)) << what;
   if (watch_energy) {
@@ -145,8 +152,9 @@ Outcome expect_sound(const Line& line, double share, const std::string& what, bo
     const double bound = r.impulse.sum() / options.delta_p + 2.0 * double(line.contacts()) + 1.0;
     EXPECT_LE(double(r.steps), bound) << what;
   }
-  std::printf("%-44s %10lld steps, energy %+.3e, momentum %+.1e\n", what.c_str(), (long long)r.steps,
-              after / before - 1.0, (line.momentum(out.velocity) - line.momentum(line.velocity)) / line.momentum_scale());
+  std::printf("%-44s %10lld steps, energy %+.3e, momentum %+.1e\n", what.c_str(),
+              (long long)r.steps, after / before - 1.0,
+              (line.momentum(out.velocity) - line.momentum(line.velocity)) / line.momentum_scale());
   return out;
 }
 
@@ -160,12 +168,15 @@ std::string name(const char* what, double value) {
 TEST(Extremes, RestitutionAndExponent) {
   for (double exponent : {1.0, 1.5, 2.5})
     for (double e : {0.0, 1e-3, 0.5, 1.0})
-      for (ComplianceModel model : {ComplianceModel::bi_stiffness, ComplianceModel::mono_stiffness}) {
+      for (ComplianceModel model :
+           {ComplianceModel::bi_stiffness, ComplianceModel::mono_stiffness}) {
         const std::string what = name("eta", exponent) + name(", e", e) +
                                  (model == ComplianceModel::mono_stiffness ? ", mono" : ", bi");
-        const Outcome out = expect_sound(struck_chain(20, 1.0, law(exponent, e, model)), 1e-4, what);
+        const Outcome out =
+            expect_sound(struck_chain(20, 1.0, law(exponent, e, model)), 1e-4, what);
         if (e == 0.0) {
-          // nothing comes back: the striker and the first bead leave together or apart, never rebound
+          // nothing comes back: the striker and the first bead leave together or apart, never
+          // rebound
           EXPECT_GE(out.velocity(0), -1e-12) << what;
         }
       }
@@ -208,14 +219,16 @@ TEST(Extremes, MassRatio1e4BothWays) {
 TEST(Extremes, DeltaPFrom1e3To1e9OfTheNaturalImpulse) {
   for (double share : {1e-3, 1e-5, 1e-7, 1e-9}) {
     const Line line = struck_chain(1, 1.0, law(1.5, 1.0));
-    const Outcome out = expect_sound(line, share, name("two bodies, delta_p / m V", share), false, true);
+    const Outcome out =
+        expect_sound(line, share, name("two bodies, delta_p / m V", share), false, true);
     // exact but for round-off, which u and E gather over the steps (1e9 of them at 1e-9)
-    const double round_off = 10.0 * double(out.result.steps) * std::numeric_limits<double>::epsilon();
+    const double round_off =
+        10.0 * double(out.result.steps) * std::numeric_limits<double>::epsilon();
     EXPECT_NEAR(out.result.velocity(0), 1.0, std::max(1e-12, round_off)) << share;
   }
   for (double share : {1e-3, 1e-4, 1e-5, 1e-6})
-    expect_sound(struck_chain(20, 1.0, law(1.5, 0.9)), share, name("20 beads e = 0.9, delta_p / m V", share),
-                 share >= 1e-4);
+    expect_sound(struck_chain(20, 1.0, law(1.5, 0.9)), share,
+                 name("20 beads e = 0.9, delta_p / m V", share), share >= 1e-4);
 }
 
 // Speeds from 1e-4 to 10 m/s: Hertz contacts have no scale of their own, so with delta_p in
@@ -223,7 +236,8 @@ TEST(Extremes, DeltaPFrom1e3To1e9OfTheNaturalImpulse) {
 TEST(Extremes, StrikerSpeedFrom1e4To10MetresPerSecond) {
   VectorXd reference;
   for (double speed : {1e-4, 1e-2, 1.0, 10.0}) {
-    const Outcome out = expect_sound(struck_chain(20, speed, law(1.5, 0.8)), 1e-4, name("speed (m/s)", speed));
+    const Outcome out =
+        expect_sound(struck_chain(20, speed, law(1.5, 0.8)), 1e-4, name("speed (m/s)", speed));
     const VectorXd scaled = out.velocity / speed;
     if (reference.size() == 0) reference = scaled;
     const double difference = (scaled - reference).cwiseAbs().maxCoeff();
@@ -235,8 +249,8 @@ TEST(Extremes, StrikerSpeedFrom1e4To10MetresPerSecond) {
 // 2 to 100 000 beads: the work of a step follows the wave, so it stays bounded.
 TEST(Extremes, ChainsFrom2To100000Beads) {
   for (int beads : {2, 10, 1000, 100000}) {
-    const Outcome out = expect_sound(struck_chain(beads, 1.0, law(1.5, 1.0)), beads > 1000 ? 3e-3 : 1e-3,
-                                     name("beads", beads), beads <= 10);
+    const Outcome out = expect_sound(struck_chain(beads, 1.0, law(1.5, 1.0)),
+                                     beads > 1000 ? 3e-3 : 1e-3, name("beads", beads), beads <= 10);
     const double contacts_per_step = double(out.result.contact_steps) / double(out.result.steps);
     std::printf("  %.2f contacts per step\n", contacts_per_step);
     EXPECT_LT(contacts_per_step, 12.0) << beads;
@@ -268,7 +282,8 @@ TEST(Extremes, GrazingContact) {
   const Line two = struck_chain(1, 1e-12, law(1.5, 1.0));
   LzbOptions options;
   options.delta_p = 1e-4 * kBeadMass;  // 1e8 times the grazing impulse
-  const LzbResult coarse = LzbImpulseIntegrator(options).integrate(two.H(), two.u_minus(), two.laws);
+  const LzbResult coarse =
+      LzbImpulseIntegrator(options).integrate(two.H(), two.u_minus(), two.laws);
   EXPECT_EQ(coarse.status, LzbStatus::terminated);
   EXPECT_EQ(coarse.steps, 0);
   EXPECT_EQ(coarse.velocity(0), -1e-12);
@@ -279,7 +294,8 @@ TEST(Extremes, GrazingContact) {
   Line chain = struck_chain(20, 1.0, law(1.5, 1.0));
   Line grazed = chain;
   grazed.velocity(20) = -1e-12;  // the last bead creeps back towards the chain
-  const Outcome plain = expect_sound(chain, 1e-4, "chain"), touched = expect_sound(grazed, 1e-4, "chain, last contact grazing");
+  const Outcome plain = expect_sound(chain, 1e-4, "chain"),
+                touched = expect_sound(grazed, 1e-4, "chain, last contact grazing");
   EXPECT_LT((plain.velocity - touched.velocity).cwiseAbs().maxCoeff(), 1e-9);
 }
 

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
+#include "../support/error_of.hpp"
+#include "mimpact/common/error.hpp"
 #include "mimpact/kernel/lagrangian_ds.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/kernel/scleronomous_relation.hpp"
-#include "../support/error_of.hpp"
-#include "mimpact/numerics/error.hpp"
 
 namespace mimpact::kernel {
 namespace {
@@ -39,7 +39,8 @@ TEST(LinearTIDS, ForceIsExternalMinusStiffnessAndDamping) {
   LagrangianLinearTIDS system(Eigen::Vector2d(0.1, 0.2), Eigen::Vector2d(1.0, -1.0), matrices, "s");
   VectorXd force(2);
   system.force(0.0, system.position(), system.velocity(), force);
-  const Eigen::Vector2d expected = matrices.external_force - matrices.stiffness * system.position() -
+  const Eigen::Vector2d expected = matrices.external_force -
+                                   matrices.stiffness * system.position() -
                                    matrices.damping * system.velocity();
   EXPECT_TRUE(force.isApprox(expected, 1e-15));
   EXPECT_TRUE(system.has_force());
@@ -49,8 +50,9 @@ TEST(LinearTIDS, ForceIsExternalMinusStiffnessAndDamping) {
 TEST(LagrangianDS, CallablesGiveMassAndForce) {
   // a pendulum in its angle: M = m L^2, F = -m g L sin(theta)
   const double m = 2.0, L = 0.5, g = 9.81;
-  LagrangianDS pendulum(VectorXd::Constant(1, 0.3), VectorXd::Zero(1),
-                        [&](const VectorXd&, MatrixXd& M) { M(0, 0) = m * L * L; }, "pendulum");
+  LagrangianDS pendulum(
+      VectorXd::Constant(1, 0.3), VectorXd::Zero(1),
+      [&](const VectorXd&, MatrixXd& M) { M(0, 0) = m * L * L; }, "pendulum");
   pendulum.set_internal_force([&](double, const VectorXd& q, const VectorXd&, VectorXd& f) {
     f(0) = m * g * L * std::sin(q(0));
   });
@@ -73,9 +75,8 @@ TEST(BadModels, NonPositiveMassIsNamed) {
 TEST(BadModels, MassOfTheWrongSizeIsNamed) {
   LagrangianLinearTIDS::Matrices matrices;
   matrices.mass = MatrixXd::Identity(3, 3);
-  const std::string message = error_of([&] {
-    LagrangianLinearTIDS(VectorXd::Zero(2), VectorXd::Zero(2), matrices, "wrong");
-  });
+  const std::string message = error_of(
+      [&] { LagrangianLinearTIDS(VectorXd::Zero(2), VectorXd::Zero(2), matrices, "wrong"); });
   EXPECT_NE(message.find("3x3; allowed: 2x2"), std::string::npos) << message;
 }
 
@@ -84,9 +85,8 @@ TEST(BadModels, JacobianOfTheWrongSizeIsNamed) {
   auto relation = std::make_shared<ScleronomousRelation>(
       [](const VectorXd& q) { return q(1) - q(0); },
       [](const VectorXd&, RowVectorXd& row) { row = RowVectorXd::Ones(3); });
-  const std::string message = error_of([&] {
-    Interaction(a, b, relation, std::make_shared<TestLaw>(), "bad jacobian");
-  });
+  const std::string message =
+      error_of([&] { Interaction(a, b, relation, std::make_shared<TestLaw>(), "bad jacobian"); });
   EXPECT_NE(message.find("interaction 'bad jacobian': the Jacobian has 3 entries; allowed: 2"),
             std::string::npos)
       << message;
@@ -97,7 +97,8 @@ TEST(BadModels, InteractionWithoutALawIsNamed) {
   const std::string message = error_of([&] {
     Interaction(a, std::make_shared<LinearRelation>(RowVectorXd::Ones(1), 0.0), nullptr, "lawless");
   });
-  EXPECT_NE(message.find("interaction 'lawless' has no nonsmooth law"), std::string::npos) << message;
+  EXPECT_NE(message.find("interaction 'lawless' has no nonsmooth law"), std::string::npos)
+      << message;
 }
 
 TEST(BadModels, InitialInterpenetrationBeyondToleranceIsNamed) {
@@ -163,8 +164,9 @@ TEST(NonSmoothDynamicalSystem, GlobalCoordinatesAndJacobians) {
 
 TEST(ScleronomousRelation, RateByFiniteDifferenceMatchesTheHessian) {
   // g = |x| - 1 in the plane: v^T (d2g) v = (|v|^2 - (x.v)^2/|x|^2) / |x|
-  ScleronomousRelation relation([](const VectorXd& q) { return q.norm() - 1.0; },
-                                [](const VectorXd& q, RowVectorXd& row) { row = q.transpose() / q.norm(); });
+  ScleronomousRelation relation(
+      [](const VectorXd& q) { return q.norm() - 1.0; },
+      [](const VectorXd& q, RowVectorXd& row) { row = q.transpose() / q.norm(); });
   const Eigen::Vector2d x(0.6, 0.9), v(1.5, -0.4);
   const double exact = (v.squaredNorm() - std::pow(x.dot(v), 2) / x.squaredNorm()) / x.norm();
   EXPECT_NEAR(relation.jacobian_rate(x, v), exact, 1e-6 * std::abs(exact));

@@ -1,14 +1,15 @@
 // The generic loop of the kernel with an integrator and problems of the test's own: output
-// times, events, impacts, observers, stop, the run summary, the law check, the registry.
+// times, events, impacts, observers, termination, the run summary, the problems handed to the
+// integrator, the law check, the registry.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "mimpact/common/error.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/kernel/registry.hpp"
 #include "mimpact/kernel/simulation.hpp"
-#include "mimpact/numerics/error.hpp"
 
 namespace mimpact::kernel {
 namespace {
@@ -58,12 +59,22 @@ class NoForces : public ContactForceProblem {
 // Uniform motion of system 0, with an impact of interaction 0 every `period` seconds.
 class PeriodicImpacts : public OneStepIntegrator {
  public:
+  // the period (s) of the impacts, the one option of the test integrator
+  struct Options {
+    double period = 1.0;
+    template <class Self, class Visit>
+    static void visit_fields(Self& self, Visit&& field) {
+      field("period", self.period, positive("s"));
+    }
+  };
   explicit PeriodicImpacts(double period) : period_(period) {}
+  explicit PeriodicImpacts(Options options) : period_(options.period) {}
   std::string_view name() const override { return "periodic"; }
-  void initialize(NonSmoothDynamicalSystem& system, double start, ImpactProblem& impacts,
-                  ContactForceProblem&) override {
+  Needs needs() const override { return {.impacts = true, .contact_forces = true}; }
+  void initialize(NonSmoothDynamicalSystem& system, double start,
+                  const EventProblems& problems) override {
     system_ = &system;
-    impacts_ = &impacts;
+    impacts_ = problems.impacts;
     time_ = start;
   }
   StepReport advance(double target) override {
@@ -92,6 +103,24 @@ class PeriodicImpacts : public OneStepIntegrator {
   double time_ = 0.0;
 };
 
+// Uniform motion and nothing else: it needs no problem.
+class Drift : public OneStepIntegrator {
+ public:
+  std::string_view name() const override { return "drift"; }
+  Needs needs() const override { return {}; }
+  void initialize(NonSmoothDynamicalSystem&, double start, const EventProblems&) override {
+    time_ = start;
+  }
+  StepReport advance(double target) override {
+    time_ = target;
+    return {.time = target};
+  }
+  double time() const override { return time_; }
+
+ private:
+  double time_ = 0.0;
+};
+
 std::shared_ptr<NonSmoothDynamicalSystem> one_body(std::shared_ptr<NonSmoothLaw> law) {
   auto system = std::make_shared<NonSmoothDynamicalSystem>();
   LagrangianLinearTIDS::Matrices matrices;
@@ -114,10 +143,13 @@ class Recorder : public SimulationObserver {
   void on_event(const Simulation& simulation, const StepReport&) override {
     events.push_back(simulation.time());
   }
-  void on_impact(const Simulation& simulation, const ImpactReport& report) override {
+  void on_impact(const Simulation&, const ImpactReport& report) override {
     impacts.push_back(report.time);
-    if (stop_after_impacts && int(impacts.size()) == stop_after_impacts)
-      const_cast<Simulation&>(simulation).stop();
+  }
+  EventStatus on_step(const Simulation&, const StepReport& step) override {
+    if (step.impact && stop_after_impacts && int(impacts.size()) + 1 == stop_after_impacts)
+      return EventStatus::terminate("enough impacts");
+    return EventStatus::proceed();
   }
   void on_end(const Simulation&) override { ++ends; }
   std::vector<double> outputs, positions, events, impacts;
@@ -127,9 +159,9 @@ class Recorder : public SimulationObserver {
 TEST(SimulationLoop, OutputsEventsAndImpactsInTimeOrder) {
   auto impacts = std::make_unique<ReversingImpacts>();
   ReversingImpacts& counter = *impacts;
-  Simulation simulation(one_body(std::make_shared<TestLaw>()),
-                        std::make_unique<PeriodicImpacts>(0.3), std::move(impacts),
-                        std::make_unique<NoForces>());
+  Simulation simulation(
+      one_body(std::make_shared<TestLaw>()), std::make_unique<PeriodicImpacts>(0.3),
+      {.impacts = std::move(impacts), .contact_forces = std::make_unique<NoForces>()});
   simulation.schedule_outputs(0.0, 0.25, 1.0);
   Recorder recorder;
   simulation.add_observer(recorder);
@@ -150,15 +182,17 @@ TEST(SimulationLoop, OutputsEventsAndImpactsInTimeOrder) {
   EXPECT_EQ(recorder.ends, 1);
 }
 
-TEST(SimulationLoop, StopEndsTheRunAfterTheCurrentAdvance) {
+TEST(SimulationLoop, TerminateEndsTheRunAfterTheCurrentAdvance) {
   Simulation simulation(one_body(std::make_shared<TestLaw>()),
                         std::make_unique<PeriodicImpacts>(0.3),
-                        std::make_unique<ReversingImpacts>(), std::make_unique<NoForces>());
+                        {.impacts = std::make_unique<ReversingImpacts>(),
+                         .contact_forces = std::make_unique<NoForces>()});
   Recorder recorder;
   recorder.stop_after_impacts = 2;
   simulation.add_observer(recorder);
   const RunSummary summary = simulation.run(0.0, 10.0);
-  EXPECT_EQ(summary.status, RunStatus::stopped);
+  EXPECT_EQ(summary.status, RunStatus::terminated);
+  EXPECT_EQ(summary.reason, "enough impacts");
   EXPECT_NEAR(summary.end_time, 0.6, 1e-15);
   EXPECT_EQ(summary.impacts, 2);
 }
@@ -166,7 +200,8 @@ TEST(SimulationLoop, StopEndsTheRunAfterTheCurrentAdvance) {
 TEST(SimulationLoop, ALawTheImpactProblemCannotHandleIsRefusedBeforeTheRun) {
   Simulation simulation(one_body(std::make_shared<OtherLaw>()),
                         std::make_unique<PeriodicImpacts>(0.3),
-                        std::make_unique<ReversingImpacts>(), std::make_unique<NoForces>());
+                        {.impacts = std::make_unique<ReversingImpacts>(),
+                         .contact_forces = std::make_unique<NoForces>()});
   Recorder recorder;
   simulation.add_observer(recorder);
   EXPECT_THROW(simulation.run(0.0, 1.0), InvalidInput);
@@ -180,28 +215,57 @@ TEST(SimulationLoop, ANonPositiveMassIsRefusedBeforeTheRun) {
   system->add(std::make_shared<LagrangianLinearTIDS>(VectorXd::Zero(1), VectorXd::Zero(1), matrices,
                                                      "massless"));
   Simulation simulation(system, std::make_unique<PeriodicImpacts>(0.3),
-                        std::make_unique<ReversingImpacts>(), std::make_unique<NoForces>());
+                        {.impacts = std::make_unique<ReversingImpacts>(),
+                         .contact_forces = std::make_unique<NoForces>()});
   try {
     simulation.run(0.0, 1.0);
     FAIL();
   } catch (const InvalidInput& error) {
-    EXPECT_NE(std::string(error.what()).find("system 'massless'"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("system 'massless'"), std::string::npos)
+        << error.what();
   }
+}
+
+// A simulation hands its integrator the problems it needs, and refuses to start without one
+// of them or with one it would leave unused.
+TEST(SimulationLoop, TheIntegratorGetsTheProblemsItNeedsAndNoOthers) {
+  auto message = [](auto make) {
+    try {
+      make();
+    } catch (const InvalidInput& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message([] {
+              Simulation(one_body(std::make_shared<TestLaw>()),
+                         std::make_unique<PeriodicImpacts>(0.3),
+                         {.impacts = std::make_unique<ReversingImpacts>()});
+            }),
+            "Simulation: the one-step integrator \"periodic\" needs a contact force problem; "
+            "none was given");
+  EXPECT_EQ(message([] {
+              Simulation(one_body(std::make_shared<TestLaw>()), std::make_unique<Drift>(),
+                         {.impacts = std::make_unique<ReversingImpacts>()});
+            }),
+            "Simulation: the one-step integrator \"drift\" solves no impact problem; "
+            "\"reversing\" was given");
+  // with no impact problem, no law is checked: the integrator takes any
+  Simulation drift(one_body(std::make_shared<OtherLaw>()), std::make_unique<Drift>());
+  EXPECT_EQ(drift.run(0.0, 1.0).status, RunStatus::reached_end);
 }
 
 TEST(Registry, CreatesByNameAndNamesWhatIsRegistered) {
   Registry<OneStepIntegrator> registry("one-step integrator");
-  registry.add("periodic", [](const Parameters& parameters) {
-    parameters.allow_only("periodic", {"period"});
-    return std::make_unique<PeriodicImpacts>(parameters.get("period", 1.0));
-  });
+  registry.add<PeriodicImpacts>("periodic");
   EXPECT_EQ(registry.create("periodic", {{"period", 0.5}})->name(), "periodic");
   try {
     registry.create("event-driven");
     FAIL();
   } catch (const InvalidInput& error) {
-    EXPECT_NE(std::string(error.what()).find("no one-step integrator named \"event-driven\"; "
-                                             "registered: periodic"),
+    EXPECT_NE(std::string(error.what())
+                  .find("no one-step integrator named \"event-driven\"; "
+                        "registered: periodic"),
               std::string::npos)
         << error.what();
   }

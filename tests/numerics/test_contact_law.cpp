@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
 namespace {
@@ -24,7 +24,7 @@ TEST(ContactLaw, ForceFromEnergyIsKDeltaToTheEta) {
 TEST(ContactLaw, ValidationNamesTheField) {
   auto message = [](ContactLaw law) {
     try {
-      law.validate("contact 7");
+      validate(law, "contact 7");
     } catch (const InvalidInput& error) {
       return std::string(error.what());
     }
@@ -44,8 +44,8 @@ TEST(ContactLaw, ValidationNamesTheField) {
 
 TEST(ContactLaw, ModelNamesRoundTrip) {
   for (ComplianceModel model : {ComplianceModel::bi_stiffness, ComplianceModel::mono_stiffness})
-    EXPECT_EQ(compliance_model_from_string(to_string(model)), model);
-  EXPECT_FALSE(compliance_model_from_string("tri-stiffness"));
+    EXPECT_EQ(enum_from_name<ComplianceModel>(enum_name(model)), model);
+  EXPECT_FALSE(enum_from_name<ComplianceModel>("tri-stiffness"));
 }
 
 }  // namespace

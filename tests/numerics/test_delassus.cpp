@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
 namespace {

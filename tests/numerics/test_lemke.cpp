@@ -32,19 +32,20 @@ TEST_P(LcpSuiteFile, SolvedWithSmallComplementarityError) {
   EXPECT_GE(result.z.minCoeff(), -1e-12 * std::max(1.0, result.z.cwiseAbs().maxCoeff()));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SiconosSuite, LcpSuiteFile,
-    ::testing::Values("lcp_CPS_1.dat", "lcp_CPS_2.dat", "lcp_CPS_4.dat", "lcp_CPS_4bis.dat",
-                      "lcp_CPS_5.dat", "lcp_Pang_isolated_sol.dat", "lcp_deudeu.dat",
-                      "lcp_enum_fails.dat", "lcp_exp_murty.dat", "lcp_exp_murty2.dat",
-                      "lcp_inf_sol_perturbed.dat", "lcp_mmc.dat", "lcp_ortiz.dat",
-                      "lcp_tobenna.dat", "lcp_trivial.dat"),
-    [](const auto& param_info) {
-      std::string name = fs::path(param_info.param).stem().string();
-      for (char& c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(SiconosSuite, LcpSuiteFile,
+                         ::testing::Values("lcp_CPS_1.dat", "lcp_CPS_2.dat", "lcp_CPS_4.dat",
+                                           "lcp_CPS_4bis.dat", "lcp_CPS_5.dat",
+                                           "lcp_Pang_isolated_sol.dat", "lcp_deudeu.dat",
+                                           "lcp_enum_fails.dat", "lcp_exp_murty.dat",
+                                           "lcp_exp_murty2.dat", "lcp_inf_sol_perturbed.dat",
+                                           "lcp_mmc.dat", "lcp_ortiz.dat", "lcp_tobenna.dat",
+                                           "lcp_trivial.dat"),
+                         [](const auto& param_info) {
+                           std::string name = fs::path(param_info.param).stem().string();
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 TEST(LcpSuite, EveryDenseFileIsCovered) {
   // the files not in the list above are the ones the suite's README excludes
@@ -84,8 +85,8 @@ TEST(Lemke, NonNegativeQGivesZeroWithoutPivoting) {
 
 TEST(Lemke, OneDimensionalProblemHasTheClosedFormSolution) {
   // z = -q/m for m > 0, q < 0: z0 enters, z leaves it at once: two pivots
-  const LemkeResult result = solve_lemke(Eigen::MatrixXd::Constant(1, 1, 4.0),
-                                         Eigen::VectorXd::Constant(1, -2.0));
+  const LemkeResult result =
+      solve_lemke(Eigen::MatrixXd::Constant(1, 1, 4.0), Eigen::VectorXd::Constant(1, -2.0));
   ASSERT_TRUE(result.solved());
   EXPECT_DOUBLE_EQ(result.z(0), 0.5);
   EXPECT_EQ(result.pivots, 2);
@@ -93,8 +94,8 @@ TEST(Lemke, OneDimensionalProblemHasTheClosedFormSolution) {
 
 TEST(Lemke, InfeasibleProblemEndsInRayTermination) {
   // w = -z - 1 can never be >= 0
-  const LemkeResult result = solve_lemke(Eigen::MatrixXd::Constant(1, 1, -1.0),
-                                         Eigen::VectorXd::Constant(1, -1.0));
+  const LemkeResult result =
+      solve_lemke(Eigen::MatrixXd::Constant(1, 1, -1.0), Eigen::VectorXd::Constant(1, -1.0));
   EXPECT_EQ(result.status, LemkeStatus::ray_termination);
 }
 
@@ -207,8 +208,8 @@ TEST(LemkeVersusEnumeration, PMatricesHaveTheUniqueSolution) {
     Eigen::MatrixXd S(n, n);
     for (auto& x : S.reshaped()) x = normal(random);
     // positive definite plus skew-symmetric: a P-matrix, not symmetric
-    const Eigen::MatrixXd M = A * A.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n) +
-                              (S - S.transpose());
+    const Eigen::MatrixXd M =
+        A * A.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n) + (S - S.transpose());
     Eigen::VectorXd q(n);
     if (trial % 3 == 0) {
       q = degenerate_q(random, n);

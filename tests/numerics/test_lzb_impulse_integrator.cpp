@@ -8,16 +8,16 @@
 #include <cmath>
 #include <numbers>
 
-#include "../support/uniform_chain.hpp"
 #include "../support/error_of.hpp"
-#include "mimpact/numerics/error.hpp"
+#include "../support/uniform_chain.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
 namespace {
 
-constexpr double kMass1 = 0.02, kMass2 = 0.05;                      // kg
+constexpr double kMass1 = 0.02, kMass2 = 0.05;                        // kg
 constexpr double kReducedMass = kMass1 * kMass2 / (kMass1 + kMass2);  // 1/H
-constexpr double kSpeed = 0.7;                                      // m/s, approach
+constexpr double kSpeed = 0.7;                                        // m/s, approach
 
 LzbResult two_body_impact(const ContactLaw& law, double delta_p) {
   LzbOptions options;
@@ -127,7 +127,8 @@ TEST(LzbChain, StrikesAtBothEndsGiveASymmetricOutcome) {
   const LzbResult result = integrator.integrate(H, u_minus, laws);
   ASSERT_EQ(result.status, LzbStatus::terminated);
   for (int j = 0; j < contacts; ++j)
-    EXPECT_NEAR(result.impulse(j), result.impulse(contacts - 1 - j), 1e-9 * result.impulse.maxCoeff());
+    EXPECT_NEAR(result.impulse(j), result.impulse(contacts - 1 - j),
+                1e-9 * result.impulse.maxCoeff());
 }
 
 // The work of a step follows the contacts in the impact, not the chain's length: the wave
@@ -185,7 +186,8 @@ TEST(LzbChain, StepLimitIsReported) {
   EXPECT_NE(result.message.find("max_steps"), std::string::npos);
 }
 
-// --- the distributing law itself (seed 000, eqs. 11-13), read off the impulses of each step
+// --- the distributing law itself (Nguyen & Brogliato 2011, eqs. 11-13), read off the impulses of
+// each step
 
 struct StepRecord {
   std::vector<double> energy, velocity, impulse;
@@ -213,7 +215,8 @@ TEST(DistributingLaw, NoEnergyStoredFollowsEquation12) {
   const Eigen::VectorXd u_minus = Eigen::Vector2d(-1.0, -0.5);
   const std::vector<ContactLaw> laws = {{.stiffness = 1e9}, {.stiffness = 4e9}};
   EveryStep record;
-  LzbImpulseIntegrator({.delta_p = delta_p, .sample_every = 1}).integrate(H, u_minus, laws, &record);
+  LzbImpulseIntegrator({.delta_p = delta_p, .sample_every = 1})
+      .integrate(H, u_minus, laws, &record);
   const double p0 = increment(record, 0, 0), p1 = increment(record, 0, 1);
   EXPECT_NEAR(p1 / p0, (4e9 / 1e9) * std::pow(0.5 / 1.0, 1.5), 1e-12);
   EXPECT_DOUBLE_EQ(std::max(p0, p1), delta_p);
@@ -228,7 +231,8 @@ TEST(DistributingLaw, EnteringAndLoadedContactsFollowEquations13And11) {
   const Eigen::VectorXd u_minus = Eigen::Vector2d(-1.0, 0.0);
   const std::vector<ContactLaw> laws = {{.stiffness = 1e9}, {.stiffness = 3e9}};
   EveryStep record;
-  LzbImpulseIntegrator({.delta_p = delta_p, .sample_every = 1}).integrate(H, u_minus, laws, &record);
+  LzbImpulseIntegrator({.delta_p = delta_p, .sample_every = 1})
+      .integrate(H, u_minus, laws, &record);
 
   std::size_t entering = 0;  // the first step contact 1 takes part in
   while (increment(record, entering, 1) == 0.0) ++entering;
@@ -247,7 +251,8 @@ TEST(DistributingLaw, EnteringAndLoadedContactsFollowEquations13And11) {
   ASSERT_GT(state.energy[1], 0.0);
   const double f0 = laws[0].force_from_energy(state.energy[0]);
   const double f1 = laws[1].force_from_energy(state.energy[1]);
-  EXPECT_NEAR(increment(record, loaded, 1) / increment(record, loaded, 0), f1 / f0, 1e-10 * f1 / f0);
+  EXPECT_NEAR(increment(record, loaded, 1) / increment(record, loaded, 0), f1 / f0,
+              1e-10 * f1 / f0);
 }
 
 // --- bad input --------------------------------------------------------------------------
@@ -292,8 +297,8 @@ TEST(LzbInput, EveryInvalidInputIsNamed) {
   no_mobility.coeffRef(2, 2) = 0.0;
   EXPECT_TRUE(has(run(no_mobility, u_minus, laws), "H(2, 2) = 0"));
 
-  EXPECT_TRUE(has(run(H, u_minus, laws, {.delta_p = 1e-5, .sampled_contacts = {3}}),
-                  "sampled_contacts"));
+  EXPECT_TRUE(
+      has(run(H, u_minus, laws, {.delta_p = 1e-5, .sampled_contacts = {3}}), "sampled_contacts"));
   LzbOptions fixed;
   fixed.fixed_thresholds = LzbOptions::FixedThresholds{1e-8, -1.0};
   EXPECT_TRUE(has(run(H, u_minus, laws, fixed), "fixed_thresholds.energy = -1"));

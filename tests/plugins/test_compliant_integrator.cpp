@@ -7,13 +7,13 @@
 #include <numbers>
 
 #include "../support/hertz_chain_reference.hpp"
+#include "mimpact/common/error.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/kernel/simulation.hpp"
 #include "mimpact/plugins/acceleration_lcp_problem.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/plugins/lzb_impact_problem.hpp"
-#include "mimpact/numerics/error.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
 
 namespace mimpact::plugins {
@@ -32,8 +32,8 @@ Collision collide(double m1, double m2, double speed, numerics::ContactLaw law,
   kernel::LagrangianLinearTIDS::Matrices a, b;
   a.mass = Eigen::MatrixXd::Constant(1, 1, m1);
   b.mass = Eigen::MatrixXd::Constant(1, 1, m2);
-  auto first = std::make_shared<kernel::LagrangianLinearTIDS>(Eigen::VectorXd::Zero(1),
-                                                              Eigen::VectorXd::Constant(1, speed), a, "a");
+  auto first = std::make_shared<kernel::LagrangianLinearTIDS>(
+      Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, speed), a, "a");
   auto second = std::make_shared<kernel::LagrangianLinearTIDS>(Eigen::VectorXd::Constant(1, 0.02),
                                                                Eigen::VectorXd::Zero(1), b, "b");
   system->add(first);
@@ -41,24 +41,22 @@ Collision collide(double m1, double m2, double speed, numerics::ContactLaw law,
   system->add(std::make_shared<kernel::Interaction>(
       first, second, std::make_shared<kernel::LinearRelation>(Eigen::RowVector2d(-1, 1), -0.02),
       std::make_shared<LzbLaw>(law), "c"));
-  auto integrator = std::make_unique<CompliantIntegrator>(options);
-  CompliantIntegrator& compliant = *integrator;
-  kernel::Simulation simulation(system, std::move(integrator), std::make_unique<LzbImpactProblem>(),
-                                std::make_unique<AccelerationLcpProblem>());
+  kernel::Simulation simulation(system, std::make_unique<CompliantIntegrator>(options));
   struct Opening : kernel::SimulationObserver {
     double time = -1.0;
-    void on_event(const kernel::Simulation& s, const kernel::StepReport& step) override {
-      if (!step.detaching.empty() && time < 0.0) {
-        time = step.time;
-        const_cast<kernel::Simulation&>(s).stop();
-      }
+    kernel::EventStatus on_step(const kernel::Simulation&,
+                                const kernel::StepReport& step) override {
+      if (!step.event || step.detaching.empty() || time >= 0.0)
+        return kernel::EventStatus::proceed();
+      time = step.time;
+      return kernel::EventStatus::terminate("the contact has opened");
     }
   } opening;
   simulation.add_observer(opening);
   simulation.run(0.0, 1.0);
   Collision result;
   result.duration = opening.time;
-  result.peak = compliant.max_forces()[0];
+  result.peak = simulation.integrator().contact_force_history()->max_force(0);
   result.separation_speed = second->velocity()(0) - first->velocity()(0);
   return result;
 }
@@ -71,7 +69,8 @@ TEST(CompliantIntegrator, TwoBodyCollisionMatchesTheClosedForm) {
     law.exponent = eta;
     const Collision collision = collide(m1, m2, speed, law);
     const double a = 1.0 + eta;
-    const double compression = std::pow(a * reduced * speed * speed / (2.0 * law.stiffness), 1.0 / a);
+    const double compression =
+        std::pow(a * reduced * speed * speed / (2.0 * law.stiffness), 1.0 / a);
     // T = (2 delta_m / V) B(1/a, 1/2) / a; F_max = K delta_m^eta
     const double duration = 2.0 * compression / speed * std::tgamma(1.0 / a) *
                             std::sqrt(std::numbers::pi) / (a * std::tgamma(1.0 / a + 0.5));
@@ -105,7 +104,8 @@ TEST(CompliantIntegrator, StepLimitEndsTheRunWithAnError) {
     collide(0.03, 0.03, 1.0, law, options);
     ADD_FAILURE() << "a Hertz collision in 20 steps at tolerance 1e-10";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("max_steps = 20 time steps taken"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("max_steps = 20 time steps taken"), std::string::npos)
+        << error.what();
   }
   options.max_steps = 0;
   EXPECT_THROW(CompliantIntegrator{options}, InvalidInput);

@@ -19,12 +19,13 @@ namespace {
 using kernel::Index;
 constexpr double kGravity = 9.81, kRadius = 0.01, kMass = 0.03;
 
-std::shared_ptr<kernel::LagrangianLinearTIDS> falling_ball(double z, double v, const std::string& name) {
+std::shared_ptr<kernel::LagrangianLinearTIDS> falling_ball(double z, double v,
+                                                           const std::string& name) {
   kernel::LagrangianLinearTIDS::Matrices matrices;
   matrices.mass = Eigen::MatrixXd::Constant(1, 1, kMass);
   matrices.external_force = Eigen::VectorXd::Constant(1, -kMass * kGravity);
-  return std::make_shared<kernel::LagrangianLinearTIDS>(Eigen::VectorXd::Constant(1, z),
-                                                        Eigen::VectorXd::Constant(1, v), matrices, name);
+  return std::make_shared<kernel::LagrangianLinearTIDS>(
+      Eigen::VectorXd::Constant(1, z), Eigen::VectorXd::Constant(1, v), matrices, name);
 }
 
 std::shared_ptr<LzbLaw> steel_law(double restitution = 0.8) {
@@ -38,7 +39,8 @@ std::shared_ptr<LzbLaw> steel_law(double restitution = 0.8) {
 std::shared_ptr<kernel::Interaction> plane(std::shared_ptr<kernel::DynamicalSystem> ball,
                                            double sign, double offset, const std::string& name) {
   return std::make_shared<kernel::Interaction>(
-      std::move(ball), std::make_shared<kernel::LinearRelation>(Eigen::RowVectorXd::Constant(1, sign), offset),
+      std::move(ball),
+      std::make_shared<kernel::LinearRelation>(Eigen::RowVectorXd::Constant(1, sign), offset),
       steel_law(), name);
 }
 
@@ -65,11 +67,11 @@ class Watch : public kernel::SimulationObserver {
   Outcome& run_;
 };
 
-Outcome simulate(std::shared_ptr<kernel::NonSmoothDynamicalSystem> system, EventDrivenOptions options,
-             double end, double output_interval = 0.0) {
+Outcome simulate(std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                 EventDrivenOptions options, double end, double output_interval = 0.0) {
   kernel::Simulation simulation(std::move(system), std::make_unique<EventDrivenIntegrator>(options),
-                                std::make_unique<LzbImpactProblem>(),
-                                std::make_unique<AccelerationLcpProblem>());
+                                {.impacts = std::make_unique<LzbImpactProblem>(),
+                                 .contact_forces = std::make_unique<AccelerationLcpProblem>()});
   Outcome run;
   Watch watch(run);
   simulation.add_observer(watch);
@@ -87,7 +89,7 @@ TEST(EventLocation, FreeFallImpactWithinTheRequestedTolerance) {
     system->add(ball);
     system->add(plane(ball, 1.0, -kRadius, "floor"));
     EventDrivenOptions options;
-    options.event_tolerance = tolerance;
+    options.ode.event_tolerance = tolerance;
     const Outcome run = simulate(system, options, exact * 1.01);
     ASSERT_EQ(run.impact_times.size(), 1u) << "tolerance " << tolerance;
     // placed after the crossing, by at most the tolerance
@@ -107,8 +109,8 @@ TEST(EventLocation, TwoContactsClosingInOneStepAreFoundInOrder) {
   system->add(plane(first, 1.0, -kRadius, "floor under low"));
   system->add(plane(second, 1.0, -kRadius, "floor under high"));
   EventDrivenOptions options;
-  options.samples_per_step = 1;
-  options.event_tolerance = 1e-12;
+  options.ode.samples_per_step = 1;
+  options.ode.event_tolerance = 1e-12;
   const double t_low = std::sqrt(2.0 * (low - kRadius) / kGravity);
   const double t_high = std::sqrt(2.0 * (high - kRadius) / kGravity);
   const Outcome run = simulate(system, options, t_high * 1.001);
@@ -131,7 +133,7 @@ TEST(EventLocation, GrazingContactNeitherImpactsNorPassesThrough) {
     system->add(ball);
     system->add(plane(ball, -1.0, apex + kRadius - overshoot - kRadius, "ceiling"));
     EventDrivenOptions options;
-    options.samples_per_step = 1;
+    options.ode.samples_per_step = 1;
     const double flight = 2.0 * v0 / kGravity;
     const Outcome run = simulate(system, options, 0.9 * flight, flight / 200);
     if (overshoot == 0.0) {

@@ -2,9 +2,9 @@
 // factorized by CHOLMOD), a law it cannot handle, and the relative impulse step.
 #include <gtest/gtest.h>
 
+#include "mimpact/common/error.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
-#include "mimpact/numerics/error.hpp"
 #include "mimpact/plugins/lzb_impact_problem.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
 
@@ -48,7 +48,8 @@ TEST(LzbImpactProblem, NonDiagonalMassGivesTheSameImpactAsTheDiagonalOne) {
   kernel::LagrangianLinearTIDS::Matrices matrices;
   matrices.mass = A.transpose() * masses.asDiagonal() * A;
   const Eigen::Matrix3d A_inverse = A.inverse();
-  auto body = std::make_shared<kernel::LagrangianLinearTIDS>(A_inverse * x, A_inverse * vx, matrices, "q");
+  auto body =
+      std::make_shared<kernel::LagrangianLinearTIDS>(A_inverse * x, A_inverse * vx, matrices, "q");
   transformed->add(body);
   for (int i = 0; i < 2; ++i) {
     Eigen::RowVector3d row = Eigen::RowVector3d::Zero();
@@ -67,9 +68,11 @@ TEST(LzbImpactProblem, NonDiagonalMassGivesTheSameImpactAsTheDiagonalOne) {
   const kernel::ImpactReport by_bodies = a.solve(*diagonal, closed, 0.0);
   const kernel::ImpactReport by_q = b.solve(*transformed, closed, 0.0);
   EXPECT_EQ(by_bodies.steps, by_q.steps);
-  EXPECT_LE((by_bodies.impulse - by_q.impulse).cwiseAbs().maxCoeff(), 1e-12 * by_bodies.impulse.maxCoeff());
+  EXPECT_LE((by_bodies.impulse - by_q.impulse).cwiseAbs().maxCoeff(),
+            1e-12 * by_bodies.impulse.maxCoeff());
   const Eigen::Vector3d after = A * body->velocity();
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(after(i), bodies[i]->velocity()(0), 1e-11) << "body " << i;
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(after(i), bodies[i]->velocity()(0), 1e-11) << "body " << i;
   // momentum of the three bodies, unchanged
   EXPECT_NEAR(masses.dot(after), masses.dot(vx), 1e-15);
 }
@@ -84,8 +87,9 @@ TEST(LzbImpactProblem, ALawItCannotHandleIsNamed) {
     problem.check_law(NewtonLaw(), "wall");
     FAIL();
   } catch (const InvalidInput& error) {
-    EXPECT_NE(std::string(error.what()).find("interaction 'wall' has a \"newton\" law, which the "
-                                             "\"lzb\" impact problem cannot handle"),
+    EXPECT_NE(std::string(error.what())
+                  .find("interaction 'wall' has a \"newton\" law, which the "
+                        "\"lzb\" impact problem cannot handle"),
               std::string::npos)
         << error.what();
   }
@@ -99,10 +103,10 @@ TEST(LzbImpactProblem, RelativeStepResolvesWeakAndStrongImpactsAlike) {
     auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
     kernel::LagrangianLinearTIDS::Matrices matrices;
     matrices.mass = Eigen::MatrixXd::Constant(1, 1, 0.03);
-    auto a = std::make_shared<kernel::LagrangianLinearTIDS>(Eigen::VectorXd::Zero(1),
-                                                            Eigen::VectorXd::Constant(1, speed), matrices, "a");
-    auto b = std::make_shared<kernel::LagrangianLinearTIDS>(Eigen::VectorXd::Constant(1, 0.02),
-                                                            Eigen::VectorXd::Zero(1), matrices, "b");
+    auto a = std::make_shared<kernel::LagrangianLinearTIDS>(
+        Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, speed), matrices, "a");
+    auto b = std::make_shared<kernel::LagrangianLinearTIDS>(
+        Eigen::VectorXd::Constant(1, 0.02), Eigen::VectorXd::Zero(1), matrices, "b");
     system->add(a);
     system->add(b);
     system->add(std::make_shared<kernel::Interaction>(

@@ -5,44 +5,44 @@
 #include <cmath>
 #include <string>
 
-#include "mimpact/chain/chain_impact.hpp"
-#include "mimpact/chain/chain_model.hpp"
-#include "mimpact/chain/chain_scene.hpp"
+#include "mimpact/chains/chain_impact.hpp"
+#include "mimpact/chains/chain_model.hpp"
+#include "mimpact/chains/chain_scene.hpp"
 
 namespace mimpact::testing {
 
-inline chain::ChainModel scene_model(const std::string& name) {
-  return chain::build_chain_model(
-      chain::load_chain_scene(std::string(MIMPACT_SOURCE_DIR) + "/examples/scenes/" + name));
+inline chains::ChainModel scene_model(const std::string& name) {
+  return chains::build_chain_model(
+      chains::load_chain_scene(std::string(MIMPACT_SOURCE_DIR) + "/examples/scenes/" + name));
 }
 
-inline chain::ChainImpact run_chain(const chain::ChainModel& model, double delta_p,
-                                    numerics::ImpactObserver* observer = nullptr,
-                                    std::int64_t sample_every = 0) {
+inline chains::ChainImpact run_chain(const chains::ChainModel& model, double delta_p,
+                                     numerics::ImpactObserver* observer = nullptr,
+                                     std::int64_t sample_every = 0) {
   numerics::LzbOptions options;
   options.delta_p = delta_p;
   options.sample_every = sample_every;
-  return chain::simulate_chain_impact(model, options, observer);
+  return chains::simulate_chain_impact(model, options, observer);
 }
 
-inline double relative_momentum_change(const chain::ChainModel& model,
-                                       const chain::ChainImpact& impact) {
-  const double before = chain::momentum(model, model.velocity);
-  return std::abs(chain::momentum(model, impact.velocity_after) - before) / std::abs(before);
+inline double relative_momentum_change(const chains::ChainModel& model,
+                                       const chains::ChainImpact& impact) {
+  const double before = chains::momentum(model, model.velocity);
+  return std::abs(chains::momentum(model, impact.velocity_after) - before) / std::abs(before);
 }
 
-inline double kinetic_energy_ratio(const chain::ChainModel& model,
-                                   const chain::ChainImpact& impact) {
-  return chain::kinetic_energy(model, impact.velocity_after) /
-         chain::kinetic_energy(model, model.velocity);
+inline double kinetic_energy_ratio(const chains::ChainModel& model,
+                                   const chains::ChainImpact& impact) {
+  return chains::kinetic_energy(model, impact.velocity_after) /
+         chains::kinetic_energy(model, model.velocity);
 }
 
-// ||a - b||_inf / ||b||_inf, the discrepancy of seed 000, eq. 47.
+// ||a - b||_inf / ||b||_inf, the discrepancy of Nguyen & Brogliato (2011), eq. 47.
 inline double relative_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
 }
 
-inline Eigen::VectorXd stiffnesses(const chain::ChainModel& model) {
+inline Eigen::VectorXd stiffnesses(const chains::ChainModel& model) {
   Eigen::VectorXd k(model.contact_count());
   for (Eigen::Index i = 0; i < k.size(); ++i) k(i) = model.laws[i].stiffness;
   return k;

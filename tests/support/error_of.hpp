@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "mimpact/numerics/error.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::testing {
 

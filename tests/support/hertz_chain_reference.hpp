@@ -63,8 +63,8 @@ inline HertzChainOutcome integrate_hertz_chain(const Eigen::VectorXd& mass,
   };
 
   namespace odeint = boost::numeric::odeint;
-  auto stepper = odeint::make_dense_output(tolerance, tolerance,
-                                           odeint::runge_kutta_dopri5<State>());
+  auto stepper =
+      odeint::make_dense_output(tolerance, tolerance, odeint::runge_kutta_dopri5<State>());
   const double speed = velocity.cwiseAbs().maxCoeff();
   stepper.initialize(y, 0.0, 1e-9);
   State probe(2 * n);

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "mimpact/chain/hertz.hpp"
+#include "mimpact/chains/hertz.hpp"
 #include "mimpact/kernel/lagrangian_ds.hpp"
 #include "mimpact/kernel/scleronomous_relation.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
@@ -48,13 +48,11 @@ struct BallPair {
 
 }  // namespace
 
-double NewtonsCradle::mass() const {
-  return chain::bead_mass(radius, {density, young, poisson});
-}
+double NewtonsCradle::mass() const { return chains::bead_mass(radius, {density, young, poisson}); }
 
 double NewtonsCradle::hertz_stiffness() const {
-  const chain::Material steel{density, young, poisson};
-  return chain::hertz_stiffness(radius, steel, radius, steel);
+  const chains::Material steel{density, young, poisson};
+  return chains::hertz_stiffness(radius, steel, radius, steel);
 }
 
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> NewtonsCradle::build() const {
@@ -66,9 +64,8 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> NewtonsCradle::build() const {
         Eigen::VectorXd::Constant(1, i == 0 ? release_angle : 0.0), Eigen::VectorXd::Zero(1),
         Eigen::MatrixXd::Constant(1, 1, m * L * L), "pendulum " + std::to_string(i));
     pendulum->set_internal_force(
-        [m, g, L](double, const Eigen::VectorXd& theta, const Eigen::VectorXd&, Eigen::VectorXd& f) {
-          f(0) = m * g * L * std::sin(theta(0));
-        });
+        [m, g, L](double, const Eigen::VectorXd& theta, const Eigen::VectorXd&,
+                  Eigen::VectorXd& f) { f(0) = m * g * L * std::sin(theta(0)); });
     system->add(pendulum);
     bodies.push_back(pendulum);
   }

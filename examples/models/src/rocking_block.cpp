@@ -33,9 +33,9 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> RockingBlock::build() const {
         [a, b, side](const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
           return v(2) * v(2) * (-side * a * std::sin(q(2)) + b * std::cos(q(2)));
         });
-    system->add(std::make_shared<kernel::Interaction>(
-        block, relation, std::make_shared<plugins::LzbLaw>(law),
-        side < 0 ? "corner -w/2" : "corner +w/2"));
+    system->add(std::make_shared<kernel::Interaction>(block, relation,
+                                                      std::make_shared<plugins::LzbLaw>(law),
+                                                      side < 0 ? "corner -w/2" : "corner +w/2"));
   }
   return system;
 }

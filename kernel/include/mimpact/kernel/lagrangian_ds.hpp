@@ -39,8 +39,7 @@ class LagrangianDS : public DynamicalSystem {
  private:
   // Eigen expressions are callable too: a tag keeps the constant-mass constructor apart
   struct ConstantMass {};
-  LagrangianDS(VectorXd position, VectorXd velocity, MatrixXd mass, std::string name,
-               ConstantMass);
+  LagrangianDS(VectorXd position, VectorXd velocity, MatrixXd mass, std::string name, ConstantMass);
 
   MatrixXd constant_mass_;
   MassFunction mass_function_;

@@ -10,8 +10,8 @@ class LagrangianLinearTIDS : public DynamicalSystem {
  public:
   struct Matrices {
     MatrixXd mass;
-    MatrixXd stiffness;     // K, empty for none
-    MatrixXd damping;       // C, empty for none
+    MatrixXd stiffness;       // K, empty for none
+    MatrixXd damping;         // C, empty for none
     VectorXd external_force;  // F_ext, empty for none
   };
   // Throws InvalidInput naming the matrix whose size disagrees with q.

@@ -11,7 +11,7 @@
 
 namespace mimpact::kernel {
 
-// The index sets of seed 000, algorithm 5: interactions by index into the system.
+// The index sets of Nguyen & Brogliato (2011), algorithm 5: interactions by index into the system.
 struct IndexSets {
   std::vector<Index> closed;      // I_c: gap within tolerance of 0
   std::vector<Index> persistent;  // I_s, part of I_c: closed, u = 0, held by contact forces

@@ -1,28 +1,49 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
+#include "mimpact/numerics/impact_observer.hpp"
 
 namespace mimpact::kernel {
 
+// How the solution of an impact ended.
+enum class ImpactStatus {
+  terminated,  // every contact has come out of the impact
+  step_limit,  // the integration of the impact stopped at its step limit: no outcome
+};
+constexpr auto enum_names(ImpactStatus) {
+  using Name = std::pair<ImpactStatus, std::string_view>;
+  return std::array{Name{ImpactStatus::terminated, "terminated"},
+                    Name{ImpactStatus::step_limit, "step_limit"}};
+}
+
 // What solving one impact did. Per-contact arrays follow `interactions`.
 struct ImpactReport {
-  double time = 0.0;                  // s, when the impact happened
-  std::vector<Index> interactions;    // the closed contacts taking part
-  VectorXd velocity_before;           // u- (m/s)
-  VectorXd velocity_after;            // u+ (m/s)
-  VectorXd impulse;                   // P (N s)
-  VectorXd max_force;                 // N; empty when the law has no force history
-  VectorXd time_of_max_force;         // s from the start of the impact
-  VectorXd velocity_resolution;       // below this |u_j| the impact cannot tell 0 apart
-  std::int64_t steps = 0;             // steps of the impact integration, if any
-  double duration = 0.0;              // s, the physical duration of the impact
-  double wall_time = 0.0;             // s spent solving it
+  ImpactStatus status = ImpactStatus::terminated;
+  std::string message;              // why it did not terminate; empty otherwise
+  double time = 0.0;                // s, when the impact happened
+  std::vector<Index> interactions;  // the closed contacts taking part
+  VectorXd velocity_before;         // u- (m/s)
+  VectorXd velocity_after;          // u+ (m/s)
+  VectorXd impulse;                 // P (N s)
+  VectorXd max_force;               // N; empty when the law has no force history
+  VectorXd time_of_max_force;       // s from the start of the impact
+  VectorXd velocity_resolution;     // below this |u_j| the impact cannot tell 0 apart
+  // the generalized velocities of the whole system (global coordinates), v- and v+
+  VectorXd generalized_velocity_before;
+  VectorXd generalized_velocity_after;
+  std::int64_t steps = 0;          // steps of the impact integration, if any
+  std::int64_t contact_steps = 0;  // contacts updated, summed over the steps: the work
+  double residual_energy = 0.0;    // J held below the termination tolerance at the end
+  double duration = 0.0;           // s, the physical duration of the impact
+  double wall_time = 0.0;          // s spent solving it
 };
 
 // Contact forces of the persistent contacts at one state: 0 <= lambda, g'' = H lambda + b >= 0,
@@ -52,6 +73,10 @@ class ImpactProblem : public OneStepNSProblem {
   // post-impact velocities and reports.
   virtual ImpactReport solve(NonSmoothDynamicalSystem& system, std::span<const Index> closed,
                              double time) = 0;
+  // Sees the steps of the impacts solved from now on, for a problem that integrates an
+  // impulse dynamics (none when null); the samples name interactions by their index in the
+  // system. A problem without steps has nothing to show and ignores it.
+  virtual void set_impact_observer(numerics::ImpactObserver*) {}
 };
 
 // The forces that keep persistent contacts closed, at acceleration level.

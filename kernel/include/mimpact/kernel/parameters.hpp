@@ -1,33 +1,190 @@
 #pragma once
 
-#include <initializer_list>
-#include <cstdint>
-#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "mimpact/common/fields.hpp"
 
 namespace mimpact::kernel {
 
-// Named numeric settings handed to a plugin's factory, e.g. {"delta_p", 1e-6}. A factory
-// reads what it knows and rejects the rest, so a misspelt name is an error, not ignored.
-class Parameters {
- public:
-  Parameters() = default;
-  Parameters(std::initializer_list<std::pair<const std::string, double>> values)
-      : values_(values) {}
+// Named settings, e.g. {"delta_p": 1e-6}: the parameters a plugin is created with by name
+// (registry.hpp), and the objects of a scene file. The keys are the fields an options
+// struct lists in its visit_fields (common/fields.hpp): read_fields fills the struct from
+// them, to_parameters writes them back. A JSON object, so that a scene, a C++ caller and a
+// Python dict hand over the same thing.
+using Parameters = nlohmann::json;
 
-  void set(const std::string& name, double value) { values_[name] = value; }
-  bool has(const std::string& name) const { return values_.count(name) > 0; }
-  double get(const std::string& name, double fallback) const;
-  // An integer parameter: throws InvalidInput naming it unless its value is a whole number
-  // in [lowest, highest] (a 2.7 or a 1e300 is an error, not a truncation).
-  std::int64_t get_integer(const std::string& name, std::int64_t fallback, std::int64_t lowest,
-                           std::int64_t highest) const;
-  // Throws InvalidInput naming the first parameter not in `known`, for plugin `owner`.
-  void allow_only(std::string_view owner, std::initializer_list<std::string_view> known) const;
+// Where parameters come from, for messages: "NAME: PATH = VALUE is invalid; allowed: ...".
+struct ParameterSource {
+  std::string name;                        // "impact problem \"lzb\"", or a scene file's path
+  std::string path;                        // where the object sits in it: "impact"; "" at the top
+  std::string_view unknown = "parameter";  // what a key is called in "unknown parameter \"x\""
+  std::string_view top = {};               // what the top level is called, e.g. "the top level"
+};
+
+namespace detail {
+
+// Reads an object into a struct through its field list: each key must be a field, each
+// value of the field's type and in its range; fields marked needed() must be present.
+class FieldReader {
+ public:
+  FieldReader(const Parameters& object, std::string path, const ParameterSource& source)
+      : object_(object), path_(std::move(path)), source_(source) {
+    if (!object_.is_object() && !object_.is_null())
+      fail(where() + " is " + std::string(object_.type_name()) + "; allowed: an object {...}");
+  }
+
+  template <class T>
+  void operator()(std::string_view name, T& value, const Allowed& allowed = {}) {
+    known_.push_back(name);
+    const std::string path = fields::join(path_, name);
+    if (object_.is_null() || !object_.contains(name)) {
+      if (allowed.required) fail("missing field " + path);
+      return;
+    }
+    read(object_.at(std::string(name)), path, value, allowed);
+  }
+
+  // Every key was a field.
+  void finish() const {
+    if (!object_.is_object()) return;
+    for (const auto& item : object_.items()) {
+      bool known = false;
+      for (std::string_view name : known_) known = known || item.key() == name;
+      if (known) continue;
+      std::string allowed;
+      for (std::string_view name : known_)
+        allowed += (allowed.empty() ? "" : ", ") + std::string(name);
+      const std::string in = path_.empty() && source_.top.empty() ? "" : " in " + where();
+      fail("unknown " + std::string(source_.unknown) + " \"" + item.key() + "\"" + in +
+           "; allowed: " + (allowed.empty() ? "none" : allowed));
+    }
+  }
 
  private:
-  std::map<std::string, double> values_;
+  template <class T>
+  void read(const Parameters& value, const std::string& path, T& out, const Allowed& allowed) {
+    if constexpr (fields::Number<T>) {
+      if (!value.is_number())
+        fail(path + " is " + std::string(value.type_name()) + "; allowed: a number, " +
+             fields::describe(allowed, fields::Integer<T>));
+      const double number = value.get<double>();
+      checker().template check_number<T>(path, number, allowed);
+      out = T(number);
+    } else if constexpr (std::is_same_v<T, bool>) {
+      if (!value.is_boolean())
+        fail(path + " is " + std::string(value.type_name()) + "; allowed: true or false");
+      out = value.get<bool>();
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (!value.is_string())
+        fail(path + " is " + std::string(value.type_name()) + "; allowed: a string");
+      out = value.get<std::string>();
+    } else if constexpr (fields::NamedEnum<T>) {
+      const auto parsed =
+          value.is_string() ? enum_from_name<T>(value.get<std::string>()) : std::nullopt;
+      if (!parsed) fail(path + " = " + value.dump() + " is invalid; allowed: " + enum_choices<T>());
+      out = *parsed;
+    } else if constexpr (std::is_same_v<T, Parameters>) {
+      out = value;  // handed on as it is, to whoever reads it next
+    } else if constexpr (fields::IsOptional<T>::value) {
+      if (value.is_null()) {
+        out.reset();
+        return;
+      }
+      if (!out) out.emplace();
+      read(value, path, *out, allowed);
+    } else if constexpr (fields::IsVector<T>::value) {
+      if (!value.is_array())
+        fail(path + " is " + std::string(value.type_name()) + "; allowed: an array [...]");
+      out.assign(value.size(), typename T::value_type{});
+      for (std::size_t k = 0; k < value.size(); ++k)
+        read(value[k], fields::element(path, k), out[k], allowed);
+    } else {
+      static_assert(fields::Described<T>,
+                    "a field must be a number, bool, string, named enum, "
+                    "struct with visit_fields, optional or vector");
+      FieldReader nested(value, path, source_);
+      T::visit_fields(out, nested);
+      nested.finish();
+    }
+  }
+
+  fields::Validator checker() const { return fields::Validator(source_.name, ""); }
+  std::string where() const {
+    return path_.empty() ? (source_.top.empty() ? "the parameters" : std::string(source_.top))
+                         : path_;
+  }
+  [[noreturn]] void fail(const std::string& what) const { checker().fail(what); }
+
+  const Parameters& object_;
+  std::string path_;
+  const ParameterSource& source_;
+  std::vector<std::string_view> known_;
 };
+
+// Writes every field of a struct.
+class FieldWriter {
+ public:
+  explicit FieldWriter(Parameters& object) : object_(object) {}
+
+  template <class T>
+  void operator()(std::string_view name, const T& value, const Allowed& = {}) {
+    if constexpr (fields::IsOptional<T>::value) {
+      if (value) object_[std::string(name)] = write(*value);
+    } else {
+      object_[std::string(name)] = write(value);
+    }
+  }
+
+  template <class T>
+  static Parameters write(const T& value) {
+    if constexpr (fields::NamedEnum<T>) {
+      return std::string(enum_name(value));
+    } else if constexpr (fields::IsVector<T>::value) {
+      Parameters array = Parameters::array();
+      for (const auto& element : value) array.push_back(write(element));
+      return array;
+    } else if constexpr (fields::Described<T>) {
+      Parameters object = Parameters::object();
+      FieldWriter writer(object);
+      T::visit_fields(value, writer);
+      return object;
+    } else {
+      return Parameters(value);
+    }
+  }
+
+ private:
+  Parameters& object_;
+};
+
+}  // namespace detail
+
+// Reads the fields of `options` that `parameters` holds (the others keep their values):
+// throws InvalidInput naming the source, the field's path, its value and what is allowed, for
+// an unknown key, a value of the wrong type or out of range, or a missing needed field.
+template <fields::Described T>
+void read_fields(const Parameters& parameters, T& options, const ParameterSource& source) {
+  detail::FieldReader reader(parameters, source.path, source);
+  T::visit_fields(options, reader);
+  reader.finish();
+}
+
+// A default-constructed T with the fields `parameters` holds.
+template <fields::Described T>
+T options_from(const Parameters& parameters, const ParameterSource& source) {
+  T options;
+  read_fields(parameters, options, source);
+  return options;
+}
+
+// Every field of `options` (optional ones when present), so that
+// options_from<T>(to_parameters(options), ...) gives `options` back.
+template <fields::Described T>
+Parameters to_parameters(const T& options) {
+  return detail::FieldWriter::write(options);
+}
 
 }  // namespace mimpact::kernel

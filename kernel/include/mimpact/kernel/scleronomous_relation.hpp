@@ -27,7 +27,7 @@ class ScleronomousRelation : public Relation {
   Gap gap_;
   Jacobian jacobian_;
   Rate rate_;
-  mutable VectorXd shifted_;          // finite-difference workspace
+  mutable VectorXd shifted_;  // finite-difference workspace
   mutable RowVectorXd ahead_, behind_;
 };
 

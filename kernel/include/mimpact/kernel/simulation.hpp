@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mimpact/common/fields.hpp"
+#include "mimpact/kernel/event_status.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/kernel/one_step_integrator.hpp"
 #include "mimpact/kernel/one_step_ns_problem.hpp"
@@ -20,43 +22,61 @@ class SimulationObserver {
  public:
   virtual ~SimulationObserver() = default;
   virtual void on_start(const Simulation&) {}
-  virtual void on_step(const Simulation&, const StepReport&) {}       // after every advance
-  virtual void on_event(const Simulation&, const StepReport&) {}      // nonsmooth events
-  virtual void on_impact(const Simulation&, const ImpactReport&) {}   // impacts among them
-  virtual void on_output(const Simulation&) {}                        // scheduled output times
+  // After every advance. Answering EventStatus::terminate ends the run once the calls of
+  // this advance (on_event, on_impact, on_output) are made.
+  virtual EventStatus on_step(const Simulation&, const StepReport&) {
+    return EventStatus::proceed();
+  }
+  virtual void on_event(const Simulation&, const StepReport&) {}     // nonsmooth events
+  virtual void on_impact(const Simulation&, const ImpactReport&) {}  // impacts among them
+  virtual void on_output(const Simulation&) {}                       // scheduled output times
   virtual void on_end(const Simulation&) {}
 };
 
 enum class RunStatus {
   reached_end,  // the end time was reached
-  stopped,      // an observer called stop()
+  terminated,   // an observer answered EventStatus::terminate
 };
 
 std::string_view to_string(RunStatus status);
 
 struct RunSummary {
   RunStatus status = RunStatus::reached_end;
+  std::string reason;                       // the observer's, when it terminated the run
   double start_time = 0.0, end_time = 0.0;  // s
-  std::int64_t advances = 0;      // calls to the integrator
-  std::int64_t smooth_steps = 0;  // steps of the smooth integration
-  std::int64_t events = 0;        // nonsmooth events
-  std::int64_t impacts = 0;       // events with an impact
-  double wall_time = 0.0;         // s
+  std::int64_t advances = 0;                // calls to the integrator
+  std::int64_t smooth_steps = 0;            // steps of the smooth integration
+  std::int64_t events = 0;                  // nonsmooth events
+  std::int64_t impacts = 0;                 // events with an impact
+  double wall_time = 0.0;                   // s
 };
 
 struct SimulationOptions {
   // Interactions may start with gaps down to -penetration_tolerance (m), round-off of
   // touching bodies; below that the model is rejected.
   double penetration_tolerance = 1e-9;
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("penetration_tolerance", self.penetration_tolerance, at_least(0.0, "m"));
+  }
+};
+
+// The problems of a simulation, which it hands its integrator: those, and only those, that
+// the integrator needs (OneStepIntegrator::needs()).
+struct SimulationProblems {
+  std::unique_ptr<ImpactProblem> impacts;
+  std::unique_ptr<ContactForceProblem> contact_forces;
 };
 
 // The generic loop: the integrator advances the system from one event to the next (time
 // events for output from a queue, nonsmooth events it finds itself), observers are told.
 class Simulation {
  public:
+  // Throws InvalidInput when the system or the integrator is missing, or when the problems
+  // are not those the integrator needs.
   Simulation(std::shared_ptr<NonSmoothDynamicalSystem> system,
-             std::unique_ptr<OneStepIntegrator> integrator,
-             std::unique_ptr<ImpactProblem> impacts, std::unique_ptr<ContactForceProblem> forces,
+             std::unique_ptr<OneStepIntegrator> integrator, SimulationProblems problems = {},
              SimulationOptions options = {});
 
   void add_observer(SimulationObserver& observer) { observers_.push_back(&observer); }
@@ -64,11 +84,10 @@ class Simulation {
   void schedule_output(double time) { outputs_.push(time); }
   void schedule_outputs(double start, double interval, double end);
 
-  // Runs from the systems' current state at time `start` to `end`. Throws InvalidInput
-  // for a model the problems cannot handle (a law, a mass, an initial interpenetration).
+  // Runs from the systems' current state at time `start` to `end`, or until an observer
+  // terminates it. Throws InvalidInput for a model the problems cannot handle (a law, a
+  // mass, an initial interpenetration).
   RunSummary run(double start, double end);
-  // Asks the run to end after the current advance.
-  void stop() { stop_requested_ = true; }
 
   double time() const { return time_; }
   const NonSmoothDynamicalSystem& system() const { return *system_; }
@@ -82,13 +101,11 @@ class Simulation {
 
   std::shared_ptr<NonSmoothDynamicalSystem> system_;
   std::unique_ptr<OneStepIntegrator> integrator_;
-  std::unique_ptr<ImpactProblem> impacts_;
-  std::unique_ptr<ContactForceProblem> forces_;
+  SimulationProblems problems_;
   SimulationOptions options_;
   std::vector<SimulationObserver*> observers_;
   std::priority_queue<double, std::vector<double>, std::greater<double>> outputs_;
   double time_ = 0.0;
-  bool stop_requested_ = false;
 };
 
 }  // namespace mimpact::kernel

@@ -1,19 +1,24 @@
 #pragma once
 
-#include <optional>
-#include <string>
+#include <array>
 #include <string_view>
+#include <utility>
+
+#include "mimpact/common/fields.hpp"
 
 namespace mimpact::numerics {
 
-// How a contact gives back its potential energy in expansion (LZB.md section 3).
+// How a contact gives back its potential energy in expansion (docs/model.md, section 3).
 enum class ComplianceModel {
   bi_stiffness,    // stiffer unloading: dE = -(1/e^2) u dP, clamped at 0
   mono_stiffness,  // same curve back, energy dropped once e^2 of the compression work is out
 };
 
-std::string_view to_string(ComplianceModel model);  // "bi-stiffness" | "mono-stiffness"
-std::optional<ComplianceModel> compliance_model_from_string(std::string_view text);
+constexpr auto enum_names(ComplianceModel) {
+  using Name = std::pair<ComplianceModel, std::string_view>;
+  return std::array{Name{ComplianceModel::bi_stiffness, "bi-stiffness"},
+                    Name{ComplianceModel::mono_stiffness, "mono-stiffness"}};
+}
 
 // The compliance and restitution of one contact: F = K delta^eta while loading, with the
 // energetic restitution coefficient e of Stronge (e^2 = -W_expansion / W_compression).
@@ -23,8 +28,14 @@ struct ContactLaw {
   double restitution = 1.0;  // e in [0, 1]
   ComplianceModel model = ComplianceModel::bi_stiffness;
 
-  // Throws InvalidInput naming `name` (e.g. "contact 3") and the field that is out of range.
-  void validate(const std::string& name) const;
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("stiffness", self.stiffness, positive("N/m^eta").with_symbol("K"));
+    field("exponent", self.exponent, positive().with_symbol("eta"));
+    field("restitution", self.restitution,
+          within(0.0, 1.0).described("0 <= e <= 1").with_symbol("e"));
+    field("model", self.model);
+  }
 
   // c(eta) K^(1/(1+eta)): the force for a potential energy E is this times E^(eta/(1+eta)),
   // the law F = K delta^eta rewritten with E = K delta^(1+eta) / (1+eta).

@@ -10,8 +10,8 @@ namespace mimpact::numerics {
 // The state of an impact at one impulse step, for the contacts being sampled. The spans
 // point into the integrator's buffers: copy what you keep.
 struct ImpactSample {
-  std::int64_t step = 0;           // impulse steps taken so far
-  double time = 0.0;               // s since the impact began
+  std::int64_t step = 0;  // impulse steps taken so far
+  double time = 0.0;      // s since the impact began
   // the independent variable P: the primary contacts' impulse steps summed (N s); each is
   // delta_p but the last of a primary's phase, which ends where the phase does
   double principal_impulse = 0.0;

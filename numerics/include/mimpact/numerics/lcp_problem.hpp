@@ -12,9 +12,9 @@ struct LcpProblem {
   Eigen::VectorXd q;
 };
 
-// Empty when M is square, q has its size and every entry is finite; otherwise says which
-// field is wrong and how.
-std::string validate_lcp(const Eigen::MatrixXd& M, const Eigen::VectorXd& q);
+// Throws InvalidInput unless M is square, q has its size and every entry is finite, saying
+// which is wrong and how.
+void validate_lcp(const Eigen::MatrixXd& M, const Eigen::VectorXd& q);
 
 // ||min(z, M z + q)||_inf relative to the size of the terms of w, max(||q||_inf,
 // ||M||_inf ||z||_inf): zero exactly at a solution, and unchanged when the data are scaled.

@@ -4,6 +4,8 @@
 #include <string>
 #include <string_view>
 
+#include "mimpact/common/fields.hpp"
+
 namespace mimpact::numerics {
 
 // How a Lemke run ended. No "cycling": the lexicographic ratio test never revisits a basis.
@@ -28,15 +30,20 @@ struct LemkeOptions {
   // A solution is accepted when its complementarity_error (lcp_problem.hpp) is at most this.
   double acceptance_tolerance = 1e-9;
 
-  // True when every option is in range; otherwise *why names the option.
-  bool is_valid(std::string* why) const;
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("max_pivots", self.max_pivots, at_least(0, "0: 1000 + 100 n"));
+    field("pivot_tolerance", self.pivot_tolerance, within(0.0, 1.0, {}, false, true));
+    field("ratio_tolerance", self.ratio_tolerance, within(0.0, 1.0, {}, false, true));
+    field("acceptance_tolerance", self.acceptance_tolerance, positive());
+  }
 };
 
 struct LemkeResult {
   LemkeStatus status = LemkeStatus::invalid_input;
-  Eigen::VectorXd z;  // the complementary point reached (the solution when solved)
-  Eigen::VectorXd w;  // M z + q, from the original data
-  int pivots = 0;     // counting the entry and the exit of the artificial variable
+  Eigen::VectorXd z;                   // the complementary point reached (the solution when solved)
+  Eigen::VectorXd w;                   // M z + q, from the original data
+  int pivots = 0;                      // counting the entry and the exit of the artificial variable
   double complementarity_error = 0.0;  // lcp_problem.hpp, measured on the original data
   std::string message;                 // what went wrong, empty when solved
 

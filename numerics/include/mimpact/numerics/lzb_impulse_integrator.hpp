@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mimpact/common/fields.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
 
@@ -30,10 +31,16 @@ struct LzbOptions {
   double termination_velocity_factor = 0.1;
   // Fixed thresholds in place of the scaled ones, as Siconos has them: kept to reproduce
   // published runs. They do not vanish with delta_p, so below some delta_p the result stops
-  // converging (C3 of seed 000's table 4 below 1e-6, where the scaled ones converge).
+  // converging (C3 of Nguyen & Brogliato's table 4 below 1e-6, where the scaled ones converge).
   struct FixedThresholds {
     double velocity = 0.0;  // m/s: tol_u_j
     double energy = 0.0;    // J: tol_E_j
+
+    template <class Self, class Visit>
+    static void visit_fields(Self& self, Visit&& field) {
+      field("velocity", self.velocity, positive("m/s").needed());
+      field("energy", self.energy, positive("J").needed());
+    }
   };
   std::optional<FixedThresholds> fixed_thresholds;
   // The impact is abandoned (status step_limit) after this many steps.
@@ -47,8 +54,15 @@ struct LzbOptions {
   double velocity_tolerance(double h_jj) const;
   double energy_tolerance(double h_jj) const;
 
-  // True when every option is in range; otherwise *why names the option and its value.
-  bool is_valid(std::string* why) const;
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("delta_p", self.delta_p, positive("N s"));
+    field("termination_velocity_factor", self.termination_velocity_factor, positive());
+    field("fixed_thresholds", self.fixed_thresholds);
+    field("max_steps", self.max_steps, at_least(1));
+    field("sample_every", self.sample_every, at_least(0, "0: start and end only"));
+    field("sampled_contacts", self.sampled_contacts, at_least(0, "contact indices"));
+  }
 };
 
 enum class LzbStatus {
@@ -74,12 +88,12 @@ struct LzbResult {
 // The LZB (Liu-Zhao-Brogliato) multiple-impact law integrated in the principal impulse:
 // Darboux-Keller dynamics du = H dP with H = W^T M^-1 W frozen, per-contact compliance and
 // energetic restitution, the distributing law dP_j / dP_pi = F_j / F_pi and the time
-// recovered from dt = dP_pi / F_pi (LZB.md sections 2-6; Nguyen & Brogliato, INRIA RR-7636,
+// recovered from dt = dP_pi / F_pi (docs/model.md, sections 2-6; Nguyen & Brogliato, INRIA RR-7636,
 // 2011, algorithms 1-3; Liu, Zhao & Brogliato, Proc. R. Soc. A 464, 2008).
 //
-// Four departures from the seed, each keeping its convergence and removing a failure:
+// Four departures from the paper, each keeping its convergence and removing a failure:
 // - The primary contact is the one with the largest force, a contact entering compression
-//   counting with the force it would have as primary. With equal laws this is the seed's
+//   counting with the force it would have as primary. With equal laws this is the paper's
 //   choice (largest energy, or most negative velocity when none is stored); unlike it, no
 //   contact ever steps more than delta_p, so a tiny primary energy late in a dissipative
 //   impact cannot make a re-entering contact's step explode.
@@ -90,7 +104,7 @@ struct LzbResult {
 //   release level): a lone contact comes out exact at any delta_p, and an elastic chain
 //   keeps its energy to second order.
 // - dt is the integral of dP / F over the primary's step with E linear in P, exact for the
-//   power law where a contact starts or ends (F -> 0), where the seed's dt = delta_p / F
+//   power law where a contact starts or ends (F -> 0), where the paper's dt = delta_p / F
 //   converges only as delta_p^0.4.
 //
 // With sparse H the work of a step is proportional to the contacts taking part (about the
@@ -110,11 +124,15 @@ class LzbImpulseIntegrator {
   const LzbOptions& options() const { return options_; }
   // Changes delta_p for the next impacts; throws InvalidInput unless it is finite and > 0.
   void set_delta_p(double delta_p);
+  // Changes the contacts the observer sees in the next impacts (empty: all of them).
+  void set_sampled_contacts(std::vector<Eigen::Index> contacts) {
+    options_.sampled_contacts = std::move(contacts);
+  }
 
  private:
   template <class Delassus>
-  LzbResult run(const Delassus& H, const Eigen::VectorXd& u_minus,
-                std::span<const ContactLaw> laws, ImpactObserver* observer);
+  LzbResult run(const Delassus& H, const Eigen::VectorXd& u_minus, std::span<const ContactLaw> laws,
+                ImpactObserver* observer);
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
                std::span<const ContactLaw> laws);
   void notify(ImpactObserver* observer, std::int64_t step, double time, double principal);
@@ -130,8 +148,8 @@ class LzbImpulseIntegrator {
   std::vector<double> impulse_carry_;  // the low-order bits the sum of impulse_ has lost
   std::vector<double> compression_work_, max_force_, time_of_max_;
   std::unique_ptr<bool[]> in_impact_;
-  std::vector<Eigen::Index> active_;   // contacts taking part, the first ones listed
-  std::size_t initially_active_ = 0;   // how many take part at the start
+  std::vector<Eigen::Index> active_;  // contacts taking part, the first ones listed
+  std::size_t initially_active_ = 0;  // how many take part at the start
   // observer buffers
   std::vector<Eigen::Index> sampled_;
   std::vector<double> sample_u_, sample_energy_, sample_force_, sample_impulse_;

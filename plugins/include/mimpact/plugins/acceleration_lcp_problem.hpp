@@ -1,21 +1,27 @@
 #pragma once
 
+#include <memory>
+
+#include "mimpact/common/fields.hpp"
 #include "mimpact/kernel/one_step_ns_problem.hpp"
-#include "mimpact/kernel/parameters.hpp"
 #include "mimpact/numerics/lemke.hpp"
-#include "mimpact/plugins/contact_dynamics.hpp"
 
 namespace mimpact::plugins {
 
+using kernel::Index;
+using kernel::VectorXd;
+class ContactDynamics;
+
 // Which persistent contacts stay closed, and with what force: the LCP
-// 0 <= lambda _|_ g'' = H lambda + b >= 0 over the persistent contacts (seed 000, eqs.
-// 21-26), solved by Lemke's method. When every free gap acceleration b_j >= 0 the answer is
+// 0 <= lambda _|_ g'' = H lambda + b >= 0 over the persistent contacts (Nguyen & Brogliato 2011,
+// eqs. 21-26), solved by Lemke's method. When every free gap acceleration b_j >= 0 the answer is
 // lambda = 0 and no LCP is built. Registered as "acceleration-lcp".
 class AccelerationLcpProblem : public kernel::ContactForceProblem {
  public:
+  using Options = numerics::LemkeOptions;
+  // Throws InvalidInput naming an option out of range.
   explicit AccelerationLcpProblem(numerics::LemkeOptions options = {});
-  // Reads "max_pivots".
-  static std::unique_ptr<kernel::ContactForceProblem> create(const kernel::Parameters& parameters);
+  ~AccelerationLcpProblem() override;
 
   std::string_view name() const override { return "acceleration-lcp"; }
   // Any law: holding a closed contact does not depend on the impact law.
@@ -29,7 +35,7 @@ class AccelerationLcpProblem : public kernel::ContactForceProblem {
 
  private:
   numerics::LemkeOptions options_;
-  ContactDynamics dynamics_;
+  std::unique_ptr<ContactDynamics> dynamics_;
   const kernel::NonSmoothDynamicalSystem* initialized_for_ = nullptr;
   std::int64_t lcp_count_ = 0;
 };

@@ -4,18 +4,17 @@
 #include <string>
 #include <vector>
 
+#include "mimpact/common/fields.hpp"
 #include "mimpact/kernel/one_step_integrator.hpp"
-#include "mimpact/kernel/parameters.hpp"
-#include "mimpact/plugins/contact_dynamics.hpp"
+#include "mimpact/numerics/ode_options.hpp"
 
 namespace mimpact::plugins {
 
+using kernel::Index;
+using kernel::VectorXd;
+
 struct EventDrivenOptions {
-  double absolute_tolerance = 1e-10;  // error control of the smooth integration (q and v units)
-  double relative_tolerance = 1e-10;
-  double max_step = 0.0;             // s, the largest smooth step; 0 for no limit
-  double event_tolerance = 1e-10;    // s: an event is placed at most this long after it happens
-  int samples_per_step = 8;          // interior samples of each smooth step searched for events
+  numerics::OdeOptions ode;          // the smooth motion and its event location
   double gap_tolerance = 1e-9;       // m: a contact with a gap up to this is closed
   double velocity_tolerance = 1e-9;  // m/s: a closed contact slower than this does not impact
   // Accumulation rule: a closed contact whose next flight (2 u / |g''|, u its separation
@@ -24,33 +23,41 @@ struct EventDrivenOptions {
   double rest_flight_time = 1e-6;
   int max_events_at_one_instant = 10000;  // more means the events never end there: an error
 
-  // True when every option is in range; otherwise *why names it.
-  bool is_valid(std::string* why) const;
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    numerics::OdeOptions::visit_fields(self.ode, field);
+    field("gap_tolerance", self.gap_tolerance, at_least(0.0, "m"));
+    field("velocity_tolerance", self.velocity_tolerance, at_least(0.0, "m/s"));
+    field("rest_flight_time", self.rest_flight_time, at_least(0.0, "s"));
+    field("max_events_at_one_instant", self.max_events_at_one_instant, at_least(1));
+  }
 };
 
-// The event-driven scheme of seed 000 (section 2.2, algorithms 4-6). Between events the
-// smooth motion M q'' = F + W_s lambda keeps the persistent contacts s closed (bilateral,
-// lambda from H_s lambda = -b_s); it is integrated by the Dormand-Prince 5(4) method of
+// The event-driven scheme of Nguyen & Brogliato (2011) (section 2.2, algorithms 4-6). Between
+// events the smooth motion M q'' = F + W_s lambda keeps the persistent contacts s closed
+// (bilateral, lambda from H_s lambda = -b_s); it is integrated by the Dormand-Prince 5(4) method of
 // Boost.Odeint with dense output, or exactly as q + v t when no force acts (no ODE then).
 // Events are searched on the dense output at interior samples of every step: gaps of the
 // other contacts closing (including a dip below 0 and back between two samples, found
 // through the sign change of u), and forces of persistent contacts vanishing. They are
-// placed with the TOMS 748 method to options.event_tolerance; contacts closing within that
+// placed with the TOMS 748 method to options.ode.event_tolerance; contacts closing within that
 // tolerance of each other form one simultaneous impact, solved by the impact problem.
-// Before the next smooth motion (seed algorithm 6): closed contacts leaving an impact with
-// u about 0, or with a flight shorter than rest_flight_time, come to rest (their u set to 0
-// by the least-energy velocity change), and the acceleration-level problem decides which
+// Before the next smooth motion (Nguyen & Brogliato's algorithm 6): closed contacts leaving an
+// impact with u about 0, or with a flight shorter than rest_flight_time, come to rest (their u set
+// to 0 by the least-energy velocity change), and the acceleration-level problem decides which
 // resting contacts stay closed. Registered as "event-driven".
 class EventDrivenIntegrator : public kernel::OneStepIntegrator {
  public:
+  using Options = EventDrivenOptions;
+  // Throws InvalidInput naming an option out of range.
   explicit EventDrivenIntegrator(EventDrivenOptions options = {});
   ~EventDrivenIntegrator() override;
-  // Reads the fields of EventDrivenOptions by name.
-  static std::unique_ptr<kernel::OneStepIntegrator> create(const kernel::Parameters& parameters);
 
   std::string_view name() const override { return "event-driven"; }
+  // An impact problem for the impacts, a contact force problem for the resting contacts.
+  Needs needs() const override { return {.impacts = true, .contact_forces = true}; }
   void initialize(kernel::NonSmoothDynamicalSystem& system, double start,
-                  kernel::ImpactProblem& impacts, kernel::ContactForceProblem& forces) override;
+                  const kernel::EventProblems& problems) override;
   kernel::StepReport advance(double target) override;
   double time() const override { return time_; }
 
@@ -62,25 +69,35 @@ class EventDrivenIntegrator : public kernel::OneStepIntegrator {
   const EventDrivenOptions& options() const { return options_; }
 
  private:
-  struct Ode;
+  struct Motion;
+  struct Watched;
   struct Event {
     double time;
     std::vector<Index> closing, detaching;
   };
 
+  // the phases of algorithm 6, before the next smooth motion
   void settle(kernel::StepReport& report);
+  void restore_penetrations();
+  std::vector<Index> bring_to_rest();
+  void hold_resting(const std::vector<Index>& resting, kernel::StepReport& report);
+
   void process_event(const Event& event, kernel::StepReport& report);
+  // the time up to which the motion is known past time_: integrates the ODE as needed
+  double known_until(kernel::StepReport& report);
+  void derivative(const std::vector<double>& y, std::vector<double>& dydt, double t);
   // earliest event in [a, b] of the current motion, if any
   bool search(double a, double b, Event& event);
+  void move_to(double t);
   void state_at(double t, VectorXd& q, VectorXd& v);
-  void watch(double t, const VectorXd& q, const VectorXd& v, VectorXd& gaps, VectorXd& rates,
-             VectorXd& forces);
+  void watch(double t, Watched& values);
   double gap_function(Index j, double t);
   double rate_function(Index j, double t);
   double force_function(Index k, double t);
-  // when contact j closes between the samples t0 and t1 (gaps_, rates_ at t0; gaps_next_,
-  // rates_next_ at t1), or infinity; `level` is the gap at which it counts as closing
-  double closing_time(Index j, double t0, double t1, double& level);
+  // when contact j closes between the samples t0 and t1, or infinity; `level` is the gap at
+  // which it counts as closing
+  double closing_time(Index j, double t0, double t1, const Watched& before, const Watched& after,
+                      double& level);
   void restart_motion();
   void check_event_loop(double t);
 
@@ -88,18 +105,14 @@ class EventDrivenIntegrator : public kernel::OneStepIntegrator {
   kernel::NonSmoothDynamicalSystem* system_ = nullptr;
   kernel::ImpactProblem* impacts_ = nullptr;
   kernel::ContactForceProblem* forces_ = nullptr;
-  ContactDynamics dynamics_;
-  std::unique_ptr<Ode> ode_;
+  std::unique_ptr<Motion> motion_;
   double time_ = 0.0;
-  VectorXd q_, v_;               // the state at time_
-  bool free_flight_ = true;      // the motion is q + v t
-  bool impact_pending_ = false;  // closed contacts approach at time_
-  bool settle_pending_ = false;  // algorithm 6 still to finish at time_
-  std::vector<Index> closed_;    // I_c at the last event
+  VectorXd q_, v_;                // the state at time_
+  bool free_flight_ = true;       // the motion is q + v t
+  bool impact_pending_ = false;   // closed contacts approach at time_
+  bool settle_pending_ = false;   // algorithm 6 still to finish at time_
+  std::vector<Index> closed_;     // I_c at the last event
   VectorXd velocity_resolution_;  // per interaction, from the last impact
-  // event search workspace
-  VectorXd q_probe_, v_probe_, gaps_, rates_, forces_probe_, gaps_next_, rates_next_,
-      forces_next_, levels_;
   double last_event_time_ = -1.0;
   int events_at_instant_ = 0;
 };

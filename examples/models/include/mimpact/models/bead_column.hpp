@@ -12,12 +12,12 @@ namespace mimpact::models {
 // i - 1 and i, the last contact the striker and the top bead.
 struct BeadColumn {
   int beads = 10;
-  double radius = 0.01;      // m
-  double density = 7800.0;   // kg/m^3
-  double young = 210e9;      // Pa, beads and floor
+  double radius = 0.01;     // m
+  double density = 7800.0;  // kg/m^3
+  double young = 210e9;     // Pa, beads and floor
   double poisson = 0.3;
-  double gravity = 9.81;     // m/s^2
-  double drop_height = 0.05; // m, of the striker's lowest point above the column's top
+  double gravity = 9.81;      // m/s^2
+  double drop_height = 0.05;  // m, of the striker's lowest point above the column's top
   // At 0.7 the column bounces and settles within a hundred impacts; near 1 its beads
   // rattle for a long time (hundreds of thousands of impacts a second).
   double restitution = 0.7;

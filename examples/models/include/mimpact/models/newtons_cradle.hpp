@@ -13,12 +13,12 @@ namespace mimpact::models {
 // pendulum is released from theta_0 < 0 (to the left).
 struct NewtonsCradle {
   int pendulums = 5;
-  double length = 0.2;       // m
-  double radius = 0.01;      // m
-  double density = 7800.0;   // kg/m^3
-  double young = 210e9;      // Pa
+  double length = 0.2;      // m
+  double radius = 0.01;     // m
+  double density = 7800.0;  // kg/m^3
+  double young = 210e9;     // Pa
   double poisson = 0.3;
-  double gravity = 9.81;     // m/s^2
+  double gravity = 9.81;        // m/s^2
   double release_angle = -0.3;  // rad, of the first pendulum
   double restitution = 1.0;
 

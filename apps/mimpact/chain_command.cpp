@@ -1,0 +1,185 @@
+#include <unistd.h>
+
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <optional>
+
+#include "command_line.hpp"
+#include "commands.hpp"
+#include "convergence_report.hpp"
+#include "mimpact/chains/chain_impact.hpp"
+#include "mimpact/chains/chain_recorder.hpp"
+#include "mimpact/common/error.hpp"
+#include "output_directory.hpp"
+
+namespace mimpact::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+// Reports the impulse steps on stderr while a long impact runs, every two million steps.
+class ProgressReporter : public numerics::ImpactObserver {
+ public:
+  void observe(const numerics::ImpactSample& sample) override {
+    const std::int64_t mark = sample.step / 2'000'000;
+    if (mark == last_mark_) return;
+    last_mark_ = mark;
+    std::fprintf(stderr, "\r  %lld impulse steps, t = %.6g s", (long long)sample.step, sample.time);
+    std::fflush(stderr);
+    reported_ = true;
+  }
+  ~ProgressReporter() override {
+    if (reported_) std::fputc('\n', stderr);
+  }
+
+ private:
+  std::int64_t last_mark_ = 0;
+  bool reported_ = false;
+};
+
+// Hands every sample to several observers.
+class Observers : public numerics::ImpactObserver {
+ public:
+  void add(numerics::ImpactObserver& observer) { observers_.push_back(&observer); }
+  void observe(const numerics::ImpactSample& sample) override {
+    for (numerics::ImpactObserver* observer : observers_) observer->observe(sample);
+  }
+  bool empty() const { return observers_.empty(); }
+
+ private:
+  std::vector<numerics::ImpactObserver*> observers_;
+};
+
+// LZB's relative error is 1 to 13 times delta_p / (m V) on the chains of docs/performance.md:
+// past 1 % of the striker's momentum the outcome is off by percents.
+void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
+  const double share = delta_p / natural_impulse;
+  if (quiet || !(share > 1e-2)) return;
+  std::fprintf(
+      stderr,
+      "mimpact chain: warning: delta_p = %g N s is %.3g of the striker's momentum m V = %g N s; "
+      "the outcome may be off by %.3g %% or more; take delta_p <= 1e-3 m V or use --tolerance\n",
+      delta_p, share, natural_impulse, 100.0 * share);
+}
+
+// The LZB impact with the recorder and, on a terminal, the progress report as observers.
+chains::ChainImpact run_lzb(const chains::ChainScene& scene, const chains::ChainModel& model,
+                            double delta_p, const std::string& delta_p_field, bool writes_series,
+                            bool quiet, chains::ChainTimeSeries& series) {
+  chains::check_delta_p(model, delta_p, scene.impact_options().integrator.max_steps, delta_p_field);
+  numerics::LzbOptions options = scene.lzb_options(delta_p);
+  warn_if_coarse(delta_p, chains::natural_impulse(model), quiet);
+  chains::ChainRecorder recorder(model, scene.record);
+  ProgressReporter progress;
+  Observers observers;
+  if (writes_series) {
+    recorder.configure(options);
+    observers.add(recorder);
+  }
+  if (!quiet && isatty(STDERR_FILENO)) {
+    if (observers.empty()) {
+      options.sample_every = 2'000'000;
+      options.sampled_contacts = {0};
+    }
+    observers.add(progress);
+  }
+  chains::ChainImpact impact =
+      chains::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
+  if (writes_series) series = recorder.series(impact);
+  return impact;
+}
+
+// summary.json on stdout, or with the time series into `out_dir`, complete or not at all.
+void write_results(const nlohmann::ordered_json& summary, const chains::ChainTimeSeries* series,
+                   const std::string& out_dir) {
+  if (out_dir.empty()) {
+    std::cout << summary.dump(2) << "\n";
+    return;
+  }
+  std::map<std::string, std::string> files{{"summary.json", summary.dump(2) + "\n"}};
+  if (series) {
+    if (!series->contacts.empty()) files["forces.csv"] = series->forces_csv();
+    if (!series->bodies.empty()) files["velocities.csv"] = series->velocities_csv();
+  }
+  write_output_directory(out_dir, files, {"summary.json", "forces.csv", "velocities.csv"});
+}
+
+}  // namespace
+
+int chain_command(const std::vector<std::string>& arguments) {
+  std::string scene_file, out_dir;
+  std::optional<double> delta_p_option;
+  std::vector<double> tolerance;
+  po::options_description visible(
+      "mimpact chain SCENE.json: the multiple impact of a granular chain");
+  visible.add_options()("out", po::value(&out_dir),
+                        "write summary.json into this directory instead of stdout")(
+      "delta-p", po::value<double>(), "principal impulse step (N s); overrides impact.delta_p")(
+      "tolerance", po::value(&tolerance)->multitoken(),
+      "eps+ [eps]: choose delta_p by halving it from --delta-p (or the scene's, or 1e-3 of the "
+      "striker's m V) until the post-impact velocities (and the velocities along the impact) "
+      "change by at most eps+ (eps) relative; see `mimpact converge`")(
+      "quiet", "no progress or report on stderr");
+  po::variables_map values;
+  if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
+  const bool quiet = values.count("quiet") > 0;
+
+  const chains::ChainScene scene = chains::load_chain_scene(scene_file);
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  if (values.count("delta-p")) delta_p_option = values["delta-p"].as<double>();
+  std::optional<double> delta_p = delta_p_option ? delta_p_option : scene.delta_p;
+  std::optional<analysis::ConvergenceStudy> study;
+  const bool lzb = scene.method == chains::Method::lzb;
+  if (!lzb && delta_p_option)
+    throw InvalidInput("--delta-p is the step of the LZB method; " + scene_file +
+                       " has method \"compliant\"");
+  if (!tolerance.empty()) {
+    study = analysis::study_convergence(
+        chains::impact_problem(model),
+        convergence_options(scene, model, delta_p_option, "--delta-p", tolerance, 12));
+    if (!study->converged)
+      throw Error(scene_file + ": no delta_p down to " + to_text(study->rows.back().delta_p) +
+                  " N s met --tolerance; loosen it or start smaller; no output written");
+    delta_p = study->rows.back().delta_p;
+  }
+  if (lzb && !delta_p)
+    throw InvalidInput(scene_file +
+                       ": missing field impact.delta_p (or give --delta-p or --tolerance)");
+  if (!lzb) delta_p.reset();  // the compliant method has no delta_p
+  const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
+  if (recording && out_dir.empty() && !quiet)
+    std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
+  const bool writes_series = recording && !out_dir.empty();
+
+  chains::ChainImpact impact;
+  chains::ChainTimeSeries series;
+  if (lzb) {
+    impact = run_lzb(scene, model, *delta_p, delta_p_option ? "--delta-p" : "impact.delta_p",
+                     writes_series, quiet, series);
+  } else {
+    chains::CompliantChainRun run =
+        chains::simulate_chain_compliant(model, scene.compliant, scene.record);
+    impact = std::move(run.impact);
+    series = std::move(run.series);
+  }
+  nlohmann::ordered_json summary =
+      chains::chain_summary(model, impact, delta_p, writes_series ? &series : nullptr);
+  summary["method"] = lzb ? "lzb" : "compliant";
+  if (study) summary["convergence"] = convergence_json(*study);
+
+  if (!quiet) std::cerr << scene_file << ": " << chains::chain_report(model, impact, delta_p);
+  if (impact.lzb.status != numerics::LzbStatus::terminated)
+    throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
+  if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite() &&
+        std::isfinite(impact.lzb.duration)))
+    throw Error(scene_file +
+                ": the run produced a non-finite velocity, force or duration; no output written");
+  write_results(summary, writes_series ? &series : nullptr, out_dir);
+  return 0;
+}
+
+}  // namespace mimpact::cli

@@ -1,0 +1,45 @@
+#include <boost/program_options.hpp>
+#include <iostream>
+#include <optional>
+
+#include "command_line.hpp"
+#include "commands.hpp"
+#include "convergence_report.hpp"
+
+namespace mimpact::cli {
+
+namespace po = boost::program_options;
+
+int converge_command(const std::vector<std::string>& arguments) {
+  std::string scene_file;
+  int halvings = 12;
+  std::vector<double> tolerance;
+  po::options_description visible(
+      "mimpact converge SCENE.json: delta_p = h, h/2, h/4, ... until the LZB impact converges "
+      "(Nguyen & Brogliato 2011, appendix A.2); exit status 4 when it does not within the "
+      "halvings");
+  visible.add_options()(
+      "from", po::value<double>(),
+      "the first delta_p h (N s); default: the scene's, else 1e-3 of the striker's m V")(
+      "tolerance", po::value(&tolerance)->multitoken(),
+      "eps+ [eps]: bounds on eta+_h (post-impact velocities) and on max eta_h (along the impact); "
+      "default 0.01 0.01")("halvings", po::value(&halvings)->default_value(halvings),
+                           "at most this many rows")("json",
+                                                     "print one JSON object instead of the table");
+  po::variables_map values;
+  if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
+  const chains::ChainScene scene = chains::load_chain_scene(scene_file);
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  const std::optional<double> from =
+      values.count("from") ? std::optional<double>(values["from"].as<double>()) : std::nullopt;
+  const analysis::ConvergenceStudy study = analysis::study_convergence(
+      chains::impact_problem(model),
+      convergence_options(scene, model, from, "--from", tolerance, halvings));
+  if (values.count("json"))
+    std::cout << convergence_json(study).dump(2) << "\n";
+  else
+    print_convergence_table(study);
+  return study.converged ? 0 : 4;
+}
+
+}  // namespace mimpact::cli

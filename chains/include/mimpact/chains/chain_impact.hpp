@@ -1,0 +1,66 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mimpact/chains/chain_model.hpp"
+#include "mimpact/numerics/lzb_impulse_integrator.hpp"
+
+namespace mimpact::chains {
+
+// The outcome of the impacts of a chain: the strikers fly to the chain (if there are gaps),
+// the shock crosses the touching beads; with strikers arriving at different times, one
+// impact after the other. Per-contact results are summed (impulses, steps) or taken at
+// their peak over all impacts, times counted from the first impact.
+struct ChainImpact {
+  numerics::LzbResult lzb;         // aggregated over the impacts
+  Eigen::VectorXd velocity_after;  // per body (m/s), after the last impact
+  double impact_time = 0.0;        // s, when the first impact began
+  double wall_time = 0.0;          // s spent in the impact computations
+  // compliant method, free chain: compliant.end_time came with contacts still closed, so the
+  // velocities are those at that time, not the chain's final ones (summary status "end_time")
+  bool cut_by_end_time = false;
+  // per impact, in order: when it began (s) and the body velocities just before it
+  std::vector<double> impact_times;
+  std::vector<Eigen::VectorXd> velocities_before;
+};
+
+// Through the kernel: the chain's system, the event-driven integrator, the LZB impact
+// problem; the run ends with the impact of the last striker to arrive. `observer` sees the
+// impulse steps of every impact (sampling as `options` says).
+ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
+                                  numerics::ImpactObserver* observer = nullptr);
+
+// The same impact on numerics alone (H of the model, no kernel), for comparisons: zero
+// gaps only.
+ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
+                                           const numerics::LzbOptions& options,
+                                           numerics::ImpactObserver* observer = nullptr);
+
+struct ChainTimeSeries;
+
+// The impact computed with the compliant contacts integrated in time (method "compliant"):
+// the same outcome fields (impulses, peaks and their times from the first contact; steps
+// are the integration's), and the recorded time series, sampled every record.interval.
+struct CompliantChainRun;
+CompliantChainRun simulate_chain_compliant(const ChainModel& model, const CompliantSpec& spec,
+                                           const RecordSpec& record);
+
+// The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
+// time and impulse, step count, duration, kinetic energy and momentum before and after.
+// With recorded time series, also the pulse of each recorded contact (Nguyen & Brogliato 2011, eqs.
+// 40-43; in a precompressed chain, of the force beyond the static one) and the wave speed through
+// each bead whose two contacts are recorded (eq. 41). Keys keep the order written here
+// (ordered_json). delta_p is absent (null) for the compliant method.
+nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact& impact,
+                                     std::optional<double> delta_p,
+                                     const ChainTimeSeries* series = nullptr);
+
+// A few lines for people: sizes, steps, duration, energy and momentum, post-impact velocities.
+std::string chain_report(const ChainModel& model, const ChainImpact& impact,
+                         std::optional<double> delta_p);
+
+}  // namespace mimpact::chains

@@ -1,0 +1,25 @@
+#include "mimpact/chains/hertz.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace mimpact::chains {
+
+double bead_mass(double radius, const Material& material) {
+  return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius * material.density;
+}
+
+double effective_modulus(const Material& a, const Material& b) {
+  return 1.0 / ((1.0 - a.poisson * a.poisson) / a.young + (1.0 - b.poisson * b.poisson) / b.young);
+}
+
+double hertz_stiffness(double radius_a, const Material& a, double radius_b, const Material& b) {
+  const double effective_radius = radius_a * radius_b / (radius_a + radius_b);
+  return 4.0 / 3.0 * std::sqrt(effective_radius) * effective_modulus(a, b);
+}
+
+double hertz_stiffness_wall(double radius, const Material& bead, const Material& wall) {
+  return 4.0 / 3.0 * std::sqrt(radius) * effective_modulus(bead, wall);
+}
+
+}  // namespace mimpact::chains

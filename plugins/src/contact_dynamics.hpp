@@ -1,0 +1,63 @@
+#pragma once
+
+#include <Eigen/SparseCholesky>
+#include <span>
+#include <vector>
+
+#include "mimpact/kernel/non_smooth_dynamical_system.hpp"
+
+namespace mimpact::plugins {
+
+using kernel::Index;
+using kernel::MatrixXd;
+using kernel::VectorXd;
+
+// The smooth dynamics of the system with a set S of contacts held closed:
+//   M q'' = F + W_S lambda,   g''_S = W_S^T q'' + (dW_S/dt)^T v = H lambda + b,
+// H = W_S^T M^-1 W_S, b = W_S^T M^-1 F + (dW_S/dt)^T v (Nguyen & Brogliato 2011, eqs. 21-26). Mass
+// factorizations, W_S and H are kept while the set is unchanged and neither the mass nor
+// the geometry depends on q, so that a right-hand side then allocates nothing.
+class ContactDynamics {
+ public:
+  void initialize(const kernel::NonSmoothDynamicalSystem& system);
+
+  // Evaluates the free acceleration M^-1 F and, for the set S, H and b at (t, q, v).
+  void evaluate(double t, const VectorXd& q, const VectorXd& v, std::span<const Index> set);
+
+  const VectorXd& free_acceleration() const { return free_acceleration_; }
+  const VectorXd& b() const { return b_; }
+  const Eigen::SparseMatrix<double>& H() const { return H_; }
+  // The forces that keep every contact of S closed (g''_S = 0): H lambda = -b.
+  const VectorXd& bilateral_force();
+  // Solves H x = rhs for the set last evaluated (sparse LDL^T, kept while H is).
+  const VectorXd& solve(const VectorXd& rhs);
+  // q'' = M^-1 (F + W_S lambda).
+  void acceleration(const VectorXd& lambda, VectorXd& out) const;
+  // x := M^-1 x, block by block (the masses as factorized by the last evaluate()).
+  void apply_inverse_mass(VectorXd& x) const;
+  // M^-1 W_S, n_dof x |S|
+  const Eigen::SparseMatrix<double>& mobility() const { return mobility_; }
+
+ private:
+  void factorize_masses(const VectorXd& q);
+  void assemble_set(const VectorXd& q, std::span<const Index> set);
+
+  const kernel::NonSmoothDynamicalSystem* system_ = nullptr;
+  struct MassBlock {
+    Index offset = 0, size = 0;
+    bool diagonal = false, constant = false, factorized = false;
+    VectorXd inverse_diagonal;
+    Eigen::LLT<MatrixXd> cholesky;
+    MatrixXd mass;  // workspaces, so that evaluate() allocates nothing
+    VectorXd q, v, force;
+  };
+  std::vector<MassBlock> blocks_;
+  bool geometry_constant_ = true;  // every relation linear
+  VectorXd free_acceleration_, b_, lambda_;
+  std::vector<Index> set_;  // the set H was assembled for
+  bool set_valid_ = false, factor_valid_ = false;
+  Eigen::SparseMatrix<double> W_, inverse_mass_, mobility_, H_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+};
+
+}  // namespace mimpact::plugins
