@@ -2,6 +2,30 @@
 
 namespace mimpact::numerics {
 
+void ImpactSampler::reset(std::span<const Eigen::Index> contacts, std::size_t contact_count) {
+  contacts_.assign(contacts.begin(), contacts.end());
+  if (contacts_.empty())
+    for (std::size_t j = 0; j < contact_count; ++j) contacts_.push_back(Eigen::Index(j));
+  velocity_.assign(contacts_.size(), 0.0);
+  energy_.assign(contacts_.size(), 0.0);
+  force_.assign(contacts_.size(), 0.0);
+  impulse_.assign(contacts_.size(), 0.0);
+}
+
+void ImpactSampler::send(ImpactObserver& observer, std::int64_t step, double time,
+                         double principal_impulse) {
+  ImpactSample sample;
+  sample.step = step;
+  sample.time = time;
+  sample.principal_impulse = principal_impulse;
+  sample.contacts = contacts_;
+  sample.velocity = velocity_;
+  sample.energy = energy_;
+  sample.force = force_;
+  sample.impulse = impulse_;
+  observer.observe(sample);
+}
+
 void ImpactHistory::observe(const ImpactSample& sample) {
   if (step.empty()) contacts.assign(sample.contacts.begin(), sample.contacts.end());
   step.push_back(sample.step);

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "impact_input.hpp"
 #include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
@@ -109,59 +109,6 @@ double primary_phase_end(double u0, double du, double e0, double dp, double f, d
   return denominator < 0.0 ? std::clamp(2.0 * c / denominator, 0.0, 1.0) : 1.0;
 }
 
-std::string entry(Index i, Index j) {
-  return "H(" + std::to_string(i) + ", " + std::to_string(j) + ")";
-}
-
-void check_entry(Index i, Index j, double h_ij, double h_ji, double scale) {
-  if (!std::isfinite(h_ij))
-    throw InvalidInput(invalid_value_message(entry(i, j), h_ij, "a finite value"));
-  if (std::abs(h_ij - h_ji) > 1e-12 * scale) {
-    std::ostringstream text;
-    text.precision(17);
-    text << entry(i, j) << " = " << h_ij << " differs from " << entry(j, i) << " = " << h_ji
-         << "; allowed: a symmetric H = W^T M^-1 W";
-    throw InvalidInput(text.str());
-  }
-}
-
-void check_sizes(Index rows, Index cols, const Eigen::VectorXd& u_minus,
-                 std::span<const ContactLaw> laws) {
-  std::ostringstream text;
-  if (rows != cols) {
-    text << "H is " << rows << "x" << cols << "; allowed: a square matrix";
-  } else if (u_minus.size() != rows) {
-    text << "u_minus has " << u_minus.size() << " entries but H is " << rows << "x" << cols
-         << "; allowed: one pre-impact velocity per contact";
-  } else if (Index(laws.size()) != rows) {
-    text << "laws has " << laws.size() << " entries but H is " << rows << "x" << cols
-         << "; allowed: one contact law per contact";
-  } else {
-    return;
-  }
-  throw InvalidInput(text.str());
-}
-
-void check_velocities(const Eigen::VectorXd& u_minus) {
-  for (Index j = 0; j < u_minus.size(); ++j)
-    if (!std::isfinite(u_minus(j)))
-      throw InvalidInput(invalid_value_message("u_minus(" + std::to_string(j) + ")", u_minus(j),
-                                               "a finite velocity (m/s)"));
-  if (u_minus.size() == 0 || u_minus.minCoeff() >= 0.0)
-    throw InvalidInput(
-        "no approaching contact: every u_minus(j) >= 0; allowed: at least one "
-        "u_minus(j) < 0 (the convention is u < 0 approaching)");
-}
-
-Eigen::VectorXd checked_diagonal(const Eigen::VectorXd& diagonal) {
-  for (Index j = 0; j < diagonal.size(); ++j)
-    if (!(diagonal(j) > 0.0))
-      throw InvalidInput(invalid_value_message(entry(j, j), diagonal(j),
-                                               "H(j, j) > 0 (every contact must be able to "
-                                               "move: H = W^T M^-1 W with W_j != 0)"));
-  return diagonal;
-}
-
 }  // namespace
 
 LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options) : options_(std::move(options)) {
@@ -179,13 +126,7 @@ LzbResult LzbImpulseIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
                                           const Eigen::VectorXd& u_minus,
                                           std::span<const ContactLaw> laws,
                                           ImpactObserver* observer) {
-  check_sizes(H.rows(), H.cols(), u_minus, laws);
-  const double scale = H.coeffs().size() ? H.coeffs().cwiseAbs().maxCoeff() : 0.0;
-  for (Index j = 0; j < H.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(H, j); it; ++it)
-      check_entry(it.row(), j, it.value(), H.coeff(j, it.row()), scale);
-  check_velocities(u_minus);
-  prepare(checked_diagonal(H.diagonal()), u_minus, laws);
+  prepare(checked_impact_input(H, u_minus, laws, options_.sampled_contacts), u_minus, laws);
   if (H.isCompressed()) return run(SparseDelassus(H), u_minus, laws, observer);
   Eigen::SparseMatrix<double> compressed = H;
   compressed.makeCompressed();
@@ -195,24 +136,13 @@ LzbResult LzbImpulseIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
 LzbResult LzbImpulseIntegrator::integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
                                           std::span<const ContactLaw> laws,
                                           ImpactObserver* observer) {
-  check_sizes(H.rows(), H.cols(), u_minus, laws);
-  const double scale = H.size() ? H.cwiseAbs().maxCoeff() : 0.0;
-  for (Index j = 0; j < H.cols(); ++j)
-    for (Index i = 0; i < H.rows(); ++i) check_entry(i, j, H(i, j), H(j, i), scale);
-  check_velocities(u_minus);
-  prepare(checked_diagonal(H.diagonal()), u_minus, laws);
+  prepare(checked_impact_input(H, u_minus, laws, options_.sampled_contacts), u_minus, laws);
   return run(DenseDelassus{H}, u_minus, laws, observer);
 }
 
 void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
                                    std::span<const ContactLaw> laws) {
   const std::size_t m = laws.size();
-  for (std::size_t j = 0; j < m; ++j) validate(laws[j], "contact " + std::to_string(j));
-  for (Index c : options_.sampled_contacts)
-    if (c < 0 || c >= Index(m))
-      throw InvalidInput(
-          invalid_value_message("sampled_contacts entry", double(c),
-                                "a contact index in [0, " + std::to_string(m) + ")"));
 
   auto reset = [m](auto& buffer, auto value) { buffer.assign(m, value); };
   reset(force_coefficient_, 0.0);
@@ -259,34 +189,18 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen:
       active_[initially_active_++] = Index(j);
     }
 
-  sampled_ = options_.sampled_contacts;
-  if (sampled_.empty())
-    for (std::size_t j = 0; j < m; ++j) sampled_.push_back(Index(j));
-  sample_u_.assign(sampled_.size(), 0.0);
-  sample_energy_.assign(sampled_.size(), 0.0);
-  sample_force_.assign(sampled_.size(), 0.0);
-  sample_impulse_.assign(sampled_.size(), 0.0);
+  sampler_.reset(options_.sampled_contacts, m);
 }
 
 void LzbImpulseIntegrator::notify(ImpactObserver* observer, std::int64_t step, double time,
                                   double principal) {
-  for (std::size_t k = 0; k < sampled_.size(); ++k) {
-    const Index j = sampled_[k];
-    sample_u_[k] = u_[j];
-    sample_energy_[k] = energy_[j];
-    sample_force_[k] = force_[j];
-    sample_impulse_[k] = impulse_[j];
-  }
-  ImpactSample sample;
-  sample.step = step;
-  sample.time = time;
-  sample.principal_impulse = principal;
-  sample.contacts = sampled_;
-  sample.velocity = sample_u_;
-  sample.energy = sample_energy_;
-  sample.force = sample_force_;
-  sample.impulse = sample_impulse_;
-  observer->observe(sample);
+  sampler_.observe(*observer, step, time, principal,
+                   [this](Index j, double& u, double& energy, double& force, double& impulse) {
+                     u = u_[j];
+                     energy = energy_[j];
+                     force = force_[j];
+                     impulse = impulse_[j];
+                   });
 }
 
 template <class Delassus>

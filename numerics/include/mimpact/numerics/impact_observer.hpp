@@ -29,6 +29,29 @@ class ImpactObserver {
   virtual void observe(const ImpactSample& sample) = 0;
 };
 
+// What an impact integrator hands its observer: the contacts sampled and their values at the
+// current sample, in buffers reused from one sample to the next.
+class ImpactSampler {
+ public:
+  // Samples `contacts`, or all `contact_count` contacts when it is empty.
+  void reset(std::span<const Eigen::Index> contacts, std::size_t contact_count);
+  // Calls value_of(j, velocity, energy, force, impulse) to fill each sampled contact j's
+  // values, then passes the sample to the observer.
+  template <class ValueOf>
+  void observe(ImpactObserver& observer, std::int64_t step, double time, double principal_impulse,
+               ValueOf&& value_of) {
+    for (std::size_t k = 0; k < contacts_.size(); ++k)
+      value_of(contacts_[k], velocity_[k], energy_[k], force_[k], impulse_[k]);
+    send(observer, step, time, principal_impulse);
+  }
+
+ private:
+  void send(ImpactObserver& observer, std::int64_t step, double time, double principal_impulse);
+
+  std::vector<Eigen::Index> contacts_;
+  std::vector<double> velocity_, energy_, force_, impulse_;
+};
+
 // Keeps every sample: one row per sample, one column per sampled contact.
 class ImpactHistory : public ImpactObserver {
  public:

@@ -150,9 +150,7 @@ class LzbImpulseIntegrator {
   std::unique_ptr<bool[]> in_impact_;
   std::vector<Eigen::Index> active_;  // contacts taking part, the first ones listed
   std::size_t initially_active_ = 0;  // how many take part at the start
-  // observer buffers
-  std::vector<Eigen::Index> sampled_;
-  std::vector<double> sample_u_, sample_energy_, sample_force_, sample_impulse_;
+  ImpactSampler sampler_;
 };
 
 }  // namespace mimpact::numerics

@@ -9,18 +9,22 @@
 namespace mimpact::numerics::internal {
 
 // Dormand-Prince 5(4) with error control and dense output (Boost.Odeint) on a flat state:
-// after each step the state is known at every time of the step, for the event search.
+// after each step the state is known at every time of the step, for the event search. The
+// state may change size at a restart: an integrator that carries only the bodies or contacts
+// taking part restarts with a new set after an event.
 class DenseOutput {
  public:
   using State = std::vector<double>;
 
   explicit DenseOutput(const OdeOptions& options)
-      : dense_(options.max_step > 0.0
-                   ? boost::numeric::odeint::make_dense_output(options.absolute_tolerance,
-                                                               options.relative_tolerance,
-                                                               options.max_step, Stepper())
-                   : boost::numeric::odeint::make_dense_output(
-                         options.absolute_tolerance, options.relative_tolerance, Stepper())) {}
+      : DenseOutput(options.absolute_tolerance, options.relative_tolerance, options.max_step) {}
+
+  // Error control to absolute + relative * |y| per component; max_step 0: no limit.
+  DenseOutput(double absolute_tolerance, double relative_tolerance, double max_step = 0.0)
+      : dense_(max_step > 0.0 ? boost::numeric::odeint::make_dense_output(
+                                    absolute_tolerance, relative_tolerance, max_step, Stepper())
+                              : boost::numeric::odeint::make_dense_output(
+                                    absolute_tolerance, relative_tolerance, Stepper())) {}
 
   // Starts again from (t, y), with a first step of `first_step`.
   void restart(const State& y, double t, double first_step) {
@@ -49,7 +53,9 @@ class DenseOutput {
   std::int64_t steps() const { return steps_; }
 
  private:
-  using Stepper = boost::numeric::odeint::runge_kutta_dopri5<State>;
+  using Stepper = boost::numeric::odeint::runge_kutta_dopri5<
+      State, double, State, double, boost::numeric::odeint::range_algebra,
+      boost::numeric::odeint::default_operations, boost::numeric::odeint::always_resizer>;
   using Dense = boost::numeric::odeint::result_of::make_dense_output<Stepper>::type;
 
   Dense dense_;

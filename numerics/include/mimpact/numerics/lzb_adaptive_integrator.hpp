@@ -1,0 +1,88 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "mimpact/common/fields.hpp"
+#include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/numerics/lzb_impulse_integrator.hpp"
+
+namespace mimpact::numerics {
+
+struct LzbAdaptiveOptions {
+  // The relative accuracy asked of the result. With V the fastest pre-impact approach,
+  // |u-|max, the velocities are to be right to tolerance * V, and each contact's impulse and
+  // indentation to the same fraction of its natural ones (V / H_jj, and the indentation that
+  // stores V^2 / (2 H_jj)); each step's local error is held to a share of that, so that the
+  // steps' errors add up to about the tolerance. A contact joins the impact once it approaches
+  // faster than tolerance * V, and the impact ends when no contact approaches faster and none holds
+  // more than (tolerance * V)^2 / (2 H_jj): the same rule as the impulse steps' with
+  // tolerance * V in place of a fraction of H_jj delta_p.
+  double tolerance = 1e-8;
+  // The impact is abandoned (status step_limit) after this many steps and restarts.
+  std::int64_t max_steps = 100'000'000;
+  // The observer sees the state every this long (s) of the impact; 0: the start and the end.
+  double sample_interval = 0.0;
+  // Contacts the observer sees; empty means all of them.
+  std::vector<Eigen::Index> sampled_contacts;
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field(
+        "tolerance", self.tolerance,
+        within(1e-13, 0.1)
+            .described("1e-13 <= tolerance <= 0.1 (below 1e-13 double precision cannot meet it)"));
+    field("max_steps", self.max_steps, at_least(1));
+    field("sample_interval", self.sample_interval, at_least(0.0, "s, 0: start and end only"));
+    field("sampled_contacts", self.sampled_contacts, at_least(0, "contact indices"));
+  }
+};
+
+// The LZB impact integrated as its continuous limit (docs/model.md, section 10): per contact
+// the energy coordinate delta_j, with dP_j/dt = K_j delta_j^eta_j and du/dt = H dP/dt, by
+// Dormand-Prince 5(4) with error control (Boost.Odeint) to LzbAdaptiveOptions::tolerance.
+// The same model as the impulse steps of LzbImpulseIntegrator (mono- and bi-stiffness, any
+// eta, e from 0 to 1, LZB's re-loading rule), without their first-order error in delta_p:
+// every switch of the right-hand side (a contact joins, its compression ends, it re-loads, it
+// is released) is located on the dense output to machine precision, and the integration
+// restarts there, so that the method keeps its fifth order.
+//
+// The ODE carries only the contacts holding energy; the contacts they push (their neighbours
+// through H) are watched for joining, and every other contact costs nothing. The work of a
+// step is proportional to the contacts taking part: about the width of the wave in a chain.
+class LzbAdaptiveIntegrator {
+ public:
+  explicit LzbAdaptiveIntegrator(LzbAdaptiveOptions options = {});
+  ~LzbAdaptiveIntegrator();
+  LzbAdaptiveIntegrator(LzbAdaptiveIntegrator&&) noexcept;
+  LzbAdaptiveIntegrator& operator=(LzbAdaptiveIntegrator&&) noexcept;
+
+  // The inputs and outputs of LzbImpulseIntegrator::integrate. In the result, `steps` counts
+  // the Runge-Kutta steps and `contact_steps` the contacts integrated, summed over them; the
+  // observer's principal_impulse is the sum of all impulses. Throws InvalidInput (naming the
+  // field) on bad input.
+  LzbResult integrate(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
+                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
+  LzbResult integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
+                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
+
+  const LzbAdaptiveOptions& options() const { return options_; }
+  // Changes the tolerance for the next impacts; throws InvalidInput when out of range.
+  void set_tolerance(double tolerance);
+  void set_sampled_contacts(std::vector<Eigen::Index> contacts) {
+    options_.sampled_contacts = std::move(contacts);
+  }
+
+ private:
+  class Impact;  // the state of one impact, its buffers reused from one impact to the next
+
+  LzbAdaptiveOptions options_;
+  std::unique_ptr<Impact> impact_;
+};
+
+}  // namespace mimpact::numerics

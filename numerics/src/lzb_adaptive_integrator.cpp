@@ -1,0 +1,505 @@
+#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <string>
+
+#include "impact_input.hpp"
+#include "mimpact/common/error.hpp"
+#include "mimpact/numerics/internal/dense_output.hpp"
+#include "mimpact/numerics/internal/event_scan.hpp"
+#include "mimpact/numerics/internal/root_bracketing.hpp"
+
+namespace mimpact::numerics {
+
+using Eigen::Index;
+
+namespace {
+
+// Where a contact is in its cycle (docs/model.md, section 10).
+enum class Phase : unsigned char { open, compression, expansion };
+
+// The switches of the right-hand side, each located as an event.
+enum EventKind : int {
+  join = 0,         // an open contact starts approaching: it enters compression at delta = 0
+  compression_end,  // u_j reaches 0 from below: delta_j is at its largest, expansion begins
+  reload,           // u_j of an expanding contact turns negative: compression again
+  release,          // delta_j reaches its release level: the contact leaves the impact
+};
+
+// Interior samples of each step searched for switches (besides its two ends).
+constexpr int kSamplesPerStep = 4;
+
+// The share of the tolerance allowed to each step's local error: the errors of a few hundred
+// steps add up, and a lone contact integrated to tolerance 1e-13 must come out exact to
+// 1e-12 (measured with share 1: 5e-12; with 1/30: see the tests).
+constexpr double kLocalErrorShare = 1.0 / 30.0;
+
+// The watched quantities at one time: the members' velocities and the active ones' delta.
+struct Watched {
+  std::vector<double> velocity, delta;
+};
+
+}  // namespace
+
+// The state of one impact. Contacts are members of the current segment (between two
+// switches) when they hold energy (active: their delta_j and the increment of P_j since the
+// segment began are the ODE's state, scaled to order one) or when an active one pushes them
+// (watched: open, their velocity followed to catch them joining). The other contacts do not
+// change and cost nothing.
+class LzbAdaptiveIntegrator::Impact {
+ public:
+  explicit Impact(double tolerance)
+      : ode_(kLocalErrorShare * tolerance, kLocalErrorShare * tolerance) {}
+
+  LzbResult run(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& diagonal,
+                const Eigen::VectorXd& u_minus, std::span<const ContactLaw> laws,
+                const LzbAdaptiveOptions& options, ImpactObserver* observer);
+
+ private:
+  using State = internal::DenseOutput::State;
+
+  void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
+               std::span<const ContactLaw> laws, const LzbAdaptiveOptions& options);
+  void begin_segment();
+  // u of every member for the ODE state y (the increments of P applied through H's columns)
+  void member_velocities(const State& y, std::vector<double>& velocity) const;
+  void derivative(const State& y, State& dydt);
+  void watch(double t, Watched& values);
+  void locate(double t0, double t1, const Watched& before, const Watched& after,
+              std::vector<internal::Crossing>& found);
+  double watched_value(std::size_t member, int kind, const Watched& values) const;
+  void end_segment(const State& y);
+  void apply(const std::vector<internal::Crossing>& crossings, double t);
+  bool settled(const State& y);
+  void sample_until(double t, ImpactObserver& observer);
+  void notify(double t, const State* y, ImpactObserver& observer);
+  LzbResult finish(const Eigen::VectorXd& u_minus, double t);
+
+  double delta_of(std::size_t member, const State& y) const {
+    return std::max(y[member], 0.0) * delta_scale_[members_[member]];
+  }
+  double force(Index j, double delta) const {
+    return stiffness_[j] * std::pow(delta, exponent_[j]);
+  }
+  double energy(Index j, double delta) const {
+    return force(j, delta) * delta / (1.0 + exponent_[j]);
+  }
+
+  const Eigen::SparseMatrix<double>* H_ = nullptr;
+  internal::DenseOutput ode_;
+  double velocity_tolerance_ = 0.0;  // tolerance * V (m/s)
+  double sample_interval_ = 0.0;
+  std::int64_t steps_ = 0, contact_steps_ = 0;
+  double segment_start_ = 0.0, last_sample_ = 0.0, closed_impulse_sum_ = 0.0;
+
+  // per contact: law constants and scales
+  std::vector<double> stiffness_, exponent_, expansion_rate_, release_factor_;
+  std::vector<double> delta_scale_, impulse_scale_, energy_tolerance_;
+  std::vector<bool> gives_nothing_back_;  // e = 0
+  // per contact: state at the start of the current segment
+  std::vector<Phase> phase_;
+  std::vector<double> delta_, impulse_, velocity_, release_level_, max_force_, time_of_max_;
+  std::vector<int> member_of_;  // the contact's place in members_, -1 if none
+  // the segment
+  std::vector<Index> members_;  // the active contacts first, then the watched ones
+  std::size_t active_ = 0;
+  State y_, y_at_;
+  std::vector<double> rhs_velocity_, velocity_at_;
+  Watched before_, after_;
+  ImpactSampler sampler_;
+};
+
+void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
+                                            const Eigen::VectorXd& u_minus,
+                                            std::span<const ContactLaw> laws,
+                                            const LzbAdaptiveOptions& options) {
+  const std::size_t m = laws.size();
+  const double fastest = -u_minus.minCoeff();
+  velocity_tolerance_ = options.tolerance * fastest;
+  sample_interval_ = options.sample_interval;
+  auto reset = [m](auto& buffer, auto value) { buffer.assign(m, value); };
+  reset(stiffness_, 0.0);
+  reset(exponent_, 0.0);
+  reset(expansion_rate_, 0.0);
+  reset(release_factor_, 0.0);
+  reset(delta_scale_, 0.0);
+  reset(impulse_scale_, 0.0);
+  reset(energy_tolerance_, 0.0);
+  reset(gives_nothing_back_, false);
+  for (std::size_t j = 0; j < m; ++j) {
+    const ContactLaw& law = laws[j];
+    const double e2 = law.restitution * law.restitution;
+    const bool mono = law.model == ComplianceModel::mono_stiffness;
+    stiffness_[j] = law.stiffness;
+    exponent_[j] = law.exponent;
+    // expansion: d delta/dt = -u / e^2 (bi-stiffness) or -u (mono-stiffness)
+    expansion_rate_[j] = mono || e2 == 0.0 ? 1.0 : 1.0 / e2;
+    // released at delta_c (1 - e^2)^(1/(1+eta)) (mono-stiffness) or at 0 (bi-stiffness)
+    release_factor_[j] = mono ? std::pow(1.0 - e2, 1.0 / (1.0 + law.exponent)) : 0.0;
+    gives_nothing_back_[j] = law.restitution == 0.0;
+    // the natural scales of contact j: the impulse that stops V, the indentation that stores
+    // the energy V^2 / (2 H_jj)
+    const double h = diagonal(Index(j));
+    impulse_scale_[j] = fastest / h;
+    delta_scale_[j] = std::pow((1.0 + law.exponent) * fastest * fastest / (2.0 * h * law.stiffness),
+                               1.0 / (1.0 + law.exponent));
+    energy_tolerance_[j] = velocity_tolerance_ * velocity_tolerance_ / (2.0 * h);
+  }
+  reset(phase_, Phase::open);
+  reset(delta_, 0.0);
+  reset(impulse_, 0.0);
+  reset(release_level_, 0.0);
+  reset(max_force_, 0.0);
+  reset(time_of_max_, 0.0);
+  reset(member_of_, -1);
+  velocity_.assign(u_minus.data(), u_minus.data() + m);
+  for (std::size_t j = 0; j < m; ++j)
+    if (velocity_[j] < -velocity_tolerance_) phase_[j] = Phase::compression;
+  members_.clear();
+  steps_ = contact_steps_ = 0;
+  segment_start_ = last_sample_ = closed_impulse_sum_ = 0.0;
+
+  sampler_.reset(options.sampled_contacts, m);
+}
+
+// The members of the segment that starts now: the contacts holding energy, then the open
+// contacts their forces reach through H. The ODE state starts at [delta / scale, 0].
+void LzbAdaptiveIntegrator::Impact::begin_segment() {
+  for (Index j : members_) member_of_[j] = -1;
+  std::vector<Index> previous;
+  previous.swap(members_);
+  // the active contacts were members already (a contact becomes active only by a switch at a
+  // member), so the new active set is found among the previous members, in their order
+  for (Index j : previous)
+    if (phase_[j] != Phase::open) {
+      member_of_[j] = int(members_.size());
+      members_.push_back(j);
+    }
+  if (previous.empty())  // the first segment
+    for (Index j = 0; j < Index(phase_.size()); ++j)
+      if (phase_[j] != Phase::open) {
+        member_of_[j] = int(members_.size());
+        members_.push_back(j);
+      }
+  active_ = members_.size();
+  const int* start = H_->outerIndexPtr();
+  const int* row = H_->innerIndexPtr();
+  for (std::size_t a = 0; a < active_; ++a)
+    for (int k = start[members_[a]]; k < start[members_[a] + 1]; ++k)
+      if (member_of_[row[k]] < 0) {
+        member_of_[row[k]] = int(members_.size());
+        members_.push_back(row[k]);
+      }
+  y_.assign(2 * active_, 0.0);
+  y_at_.assign(2 * active_, 0.0);
+  for (std::size_t a = 0; a < active_; ++a) y_[a] = delta_[members_[a]] / delta_scale_[members_[a]];
+  rhs_velocity_.resize(members_.size());
+  velocity_at_.resize(members_.size());
+}
+
+void LzbAdaptiveIntegrator::Impact::member_velocities(const State& y,
+                                                      std::vector<double>& velocity) const {
+  for (std::size_t p = 0; p < members_.size(); ++p) velocity[p] = velocity_[members_[p]];
+  const int* start = H_->outerIndexPtr();
+  const int* row = H_->innerIndexPtr();
+  const double* value = H_->valuePtr();
+  for (std::size_t a = 0; a < active_; ++a) {
+    const Index j = members_[a];
+    const double increment = y[active_ + a] * impulse_scale_[j];
+    for (int k = start[j]; k < start[j + 1]; ++k)
+      velocity[std::size_t(member_of_[row[k]])] += value[k] * increment;
+  }
+}
+
+// d delta_j/dt = -u_j (compression, mono-stiffness expansion) or -u_j / e_j^2 (bi-stiffness
+// expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
+void LzbAdaptiveIntegrator::Impact::derivative(const State& y, State& dydt) {
+  member_velocities(y, rhs_velocity_);
+  for (std::size_t a = 0; a < active_; ++a) {
+    const Index j = members_[a];
+    const double rate = phase_[j] == Phase::expansion ? expansion_rate_[j] : 1.0;
+    dydt[a] = -rhs_velocity_[a] * rate / delta_scale_[j];
+    dydt[active_ + a] = force(j, delta_of(a, y)) / impulse_scale_[j];
+  }
+}
+
+void LzbAdaptiveIntegrator::Impact::watch(double t, Watched& values) {
+  const State* y = &y_at_;
+  if (t == ode_.time())
+    y = &ode_.state();
+  else
+    ode_.state_at(t, y_at_);
+  values.velocity.resize(members_.size());
+  values.delta.resize(active_);
+  member_velocities(*y, values.velocity);
+  // unclamped, so that a release at delta = 0 is narrowed where delta changes sign
+  for (std::size_t a = 0; a < active_; ++a) values.delta[a] = (*y)[a] * delta_scale_[members_[a]];
+}
+
+// The quantity that is > 0 before the switch `kind` of a member and <= 0 once it happened.
+double LzbAdaptiveIntegrator::Impact::watched_value(std::size_t member, int kind,
+                                                    const Watched& values) const {
+  switch (kind) {
+    case join:
+      return values.velocity[member] + velocity_tolerance_;
+    case compression_end:
+      return -values.velocity[member];
+    case reload:
+      return values.velocity[member];
+    default:  // release
+      return values.delta[member] - release_level_[members_[member]];
+  }
+}
+
+// The switches of [t0, t1], each narrowed (TOMS 748) to a few ulp of t on the dense output.
+// Every member is on the near side of its switches when a segment starts, up to rounding.
+void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& before,
+                                           const Watched& after,
+                                           std::vector<internal::Crossing>& found) {
+  const double resolution = 4.0 * DBL_EPSILON * t1;
+  Watched probe;
+  auto check = [&](std::size_t member, int kind) {
+    const double q0 = watched_value(member, kind, before);
+    const double q1 = watched_value(member, kind, after);
+    if (q1 > 0.0 || (q0 <= 0.0 && t0 != segment_start_)) return;
+    double crossing = t0;
+    if (q0 > 0.0) {
+      auto q = [&](double t) {
+        watch(t, probe);
+        return watched_value(member, kind, probe);
+      };
+      crossing = narrow_crossing(q, t0, t1, q0, q1, resolution).upper;
+    }
+    found.push_back({long(member), kind, crossing});
+  };
+  for (std::size_t p = 0; p < members_.size(); ++p) {
+    switch (phase_[members_[p]]) {
+      case Phase::open:
+        check(p, join);
+        break;
+      case Phase::compression:
+        check(p, compression_end);
+        break;
+      case Phase::expansion:
+        check(p, reload);
+        check(p, release);
+        break;
+    }
+  }
+}
+
+// Writes the members' state at the end of the segment (state y) into the per-contact arrays.
+void LzbAdaptiveIntegrator::Impact::end_segment(const State& y) {
+  member_velocities(y, velocity_at_);
+  for (std::size_t p = 0; p < members_.size(); ++p) velocity_[members_[p]] = velocity_at_[p];
+  for (std::size_t a = 0; a < active_; ++a) {
+    const Index j = members_[a];
+    delta_[j] = delta_of(a, y);
+    const double increment = y[active_ + a] * impulse_scale_[j];
+    impulse_[j] += increment;
+    closed_impulse_sum_ += increment;
+  }
+}
+
+void LzbAdaptiveIntegrator::Impact::apply(const std::vector<internal::Crossing>& crossings,
+                                          double t) {
+  for (const internal::Crossing& crossing : crossings) {
+    const Index j = members_[std::size_t(crossing.index)];
+    switch (crossing.kind) {
+      case join:
+        phase_[j] = Phase::compression;
+        delta_[j] = 0.0;
+        break;
+      case compression_end:
+        if (const double f = force(j, delta_[j]); f > max_force_[j]) {
+          max_force_[j] = f;
+          time_of_max_[j] = t;
+        }
+        phase_[j] = gives_nothing_back_[j] ? Phase::open : Phase::expansion;
+        if (gives_nothing_back_[j]) delta_[j] = 0.0;
+        release_level_[j] = release_factor_[j] * delta_[j];
+        break;
+      case reload:
+        phase_[j] = Phase::compression;
+        break;
+      default:  // release
+        phase_[j] = Phase::open;
+        delta_[j] = 0.0;
+        break;
+    }
+  }
+}
+
+// The impact's end: no contact approaches faster than tolerance * V and none holds more
+// than its energy tolerance (the open ones are known to approach slower: they would have
+// joined).
+bool LzbAdaptiveIntegrator::Impact::settled(const State& y) {
+  member_velocities(y, velocity_at_);
+  for (std::size_t a = 0; a < active_; ++a) {
+    const Index j = members_[a];
+    if (velocity_at_[a] < -velocity_tolerance_ || energy(j, delta_of(a, y)) > energy_tolerance_[j])
+      return false;
+  }
+  return true;
+}
+
+void LzbAdaptiveIntegrator::Impact::notify(double t, const State* y, ImpactObserver& observer) {
+  if (y) member_velocities(*y, velocity_at_);
+  double impulse_sum = closed_impulse_sum_;
+  if (y)
+    for (std::size_t a = 0; a < active_; ++a)
+      impulse_sum += (*y)[active_ + a] * impulse_scale_[members_[a]];
+  sampler_.observe(observer, steps_, t, impulse_sum,
+                   [&](Index j, double& u, double& energy_now, double& force_now, double& impulse) {
+                     const int p = y ? member_of_[j] : -1;
+                     const bool active = p >= 0 && std::size_t(p) < active_;
+                     const double delta = active ? delta_of(std::size_t(p), *y) : delta_[j];
+                     u = p >= 0 ? velocity_at_[std::size_t(p)] : velocity_[j];
+                     energy_now = energy(j, delta);
+                     force_now = force(j, delta);
+                     impulse = impulse_[j] +
+                               (active ? (*y)[active_ + std::size_t(p)] * impulse_scale_[j] : 0.0);
+                   });
+}
+
+// The samples of the observer that fall in the part of the current step up to t.
+void LzbAdaptiveIntegrator::Impact::sample_until(double t, ImpactObserver& observer) {
+  if (sample_interval_ <= 0.0) return;
+  for (double next = last_sample_ + sample_interval_; next <= t;
+       next = last_sample_ + sample_interval_) {
+    ode_.state_at(next, y_at_);
+    notify(next, &y_at_, observer);
+    last_sample_ = next;
+  }
+}
+
+LzbResult LzbAdaptiveIntegrator::Impact::finish(const Eigen::VectorXd& u_minus, double t) {
+  LzbResult result;
+  const std::size_t m = phase_.size();
+  result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse_.data(), Index(m));
+  result.velocity = u_minus + (*H_) * result.impulse;
+  for (std::size_t j = 0; j < m; ++j) {
+    if (phase_[j] == Phase::open) continue;
+    result.residual_energy += energy(Index(j), delta_[j]);
+    if (const double f = force(Index(j), delta_[j]); f > max_force_[j]) {
+      max_force_[j] = f;  // still in compression at the end
+      time_of_max_[j] = t;
+    }
+  }
+  result.max_force = Eigen::Map<const Eigen::VectorXd>(max_force_.data(), Index(m));
+  result.time_of_max_force = Eigen::Map<const Eigen::VectorXd>(time_of_max_.data(), Index(m));
+  result.steps = steps_;
+  result.contact_steps = contact_steps_;
+  result.duration = t;
+  return result;
+}
+
+LzbResult LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
+                                             const Eigen::VectorXd& diagonal,
+                                             const Eigen::VectorXd& u_minus,
+                                             std::span<const ContactLaw> laws,
+                                             const LzbAdaptiveOptions& options,
+                                             ImpactObserver* observer) {
+  H_ = &H;
+  prepare(diagonal, u_minus, laws, options);
+  begin_segment();
+  // the first step: a small share of the time the fastest contact takes to stop
+  double first_step = 1.0;
+  for (std::size_t a = 0; a < active_; ++a)
+    first_step = std::min(first_step, delta_scale_[members_[a]] / -u_minus(members_[a]));
+  ode_.restart(y_, 0.0, 1e-3 * first_step);
+  if (observer) notify(0.0, &y_, *observer);
+  auto rhs = [this](const State& y, State& dydt, double) { derivative(y, dydt); };
+
+  std::int64_t restarts = 0;
+  double t = 0.0;
+  while (true) {
+    if (steps_ + restarts >= options.max_steps) {
+      end_segment(ode_.state());
+      LzbResult result = finish(u_minus, ode_.time());
+      result.status = LzbStatus::step_limit;
+      result.message =
+          "the impact did not end within max_steps = " + std::to_string(options.max_steps) +
+          " steps and restarts";
+      if (observer) notify(result.duration, nullptr, *observer);
+      return result;
+    }
+    const double step_start = ode_.time();
+    ode_.step(rhs);
+    ++steps_;
+    contact_steps_ += std::int64_t(active_);
+    const std::vector<internal::Crossing> found = internal::scan_events(
+        step_start, ode_.time(), kSamplesPerStep + 1, 0.0, before_, after_,
+        [this](double time, Watched& v) { watch(time, v); },
+        [this](double t0, double t1, const Watched& b, const Watched& a,
+               std::vector<internal::Crossing>& f) { locate(t0, t1, b, a, f); });
+    if (found.empty()) {
+      t = ode_.time();
+      if (observer) sample_until(t, *observer);
+      if (settled(ode_.state())) {
+        end_segment(ode_.state());
+        break;
+      }
+      continue;
+    }
+    t = found.front().time;
+    if (observer) sample_until(t, *observer);
+    ode_.state_at(t, y_at_);
+    end_segment(y_at_);
+    apply(found, t);
+    const double last_step = ode_.last_step();
+    begin_segment();
+    if (active_ == 0) break;
+    ode_.restart(y_, t, last_step);
+    segment_start_ = t;
+    ++restarts;
+  }
+  LzbResult result = finish(u_minus, t);
+  if (observer) notify(t, nullptr, *observer);
+  return result;
+}
+
+LzbAdaptiveIntegrator::LzbAdaptiveIntegrator(LzbAdaptiveOptions options)
+    : options_(std::move(options)) {
+  validate(options_, "adaptive LZB options");
+}
+
+LzbAdaptiveIntegrator::~LzbAdaptiveIntegrator() = default;
+LzbAdaptiveIntegrator::LzbAdaptiveIntegrator(LzbAdaptiveIntegrator&&) noexcept = default;
+LzbAdaptiveIntegrator& LzbAdaptiveIntegrator::operator=(LzbAdaptiveIntegrator&&) noexcept = default;
+
+void LzbAdaptiveIntegrator::set_tolerance(double tolerance) {
+  LzbAdaptiveOptions changed = options_;
+  changed.tolerance = tolerance;
+  validate(changed, "adaptive LZB options");
+  options_ = std::move(changed);
+  impact_.reset();
+}
+
+LzbResult LzbAdaptiveIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
+                                           const Eigen::VectorXd& u_minus,
+                                           std::span<const ContactLaw> laws,
+                                           ImpactObserver* observer) {
+  const Eigen::VectorXd diagonal =
+      checked_impact_input(H, u_minus, laws, options_.sampled_contacts);
+  if (!impact_) impact_ = std::make_unique<Impact>(options_.tolerance);
+  if (H.isCompressed()) return impact_->run(H, diagonal, u_minus, laws, options_, observer);
+  Eigen::SparseMatrix<double> compressed = H;
+  compressed.makeCompressed();
+  return impact_->run(compressed, diagonal, u_minus, laws, options_, observer);
+}
+
+LzbResult LzbAdaptiveIntegrator::integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
+                                           std::span<const ContactLaw> laws,
+                                           ImpactObserver* observer) {
+  const Eigen::VectorXd diagonal =
+      checked_impact_input(H, u_minus, laws, options_.sampled_contacts);
+  Eigen::SparseMatrix<double> sparse = H.sparseView();
+  sparse.makeCompressed();
+  if (!impact_) impact_ = std::make_unique<Impact>(options_.tolerance);
+  return impact_->run(sparse, diagonal, u_minus, laws, options_, observer);
+}
+
+}  // namespace mimpact::numerics

@@ -1,0 +1,227 @@
+// The adaptive LZB integrator (the continuous limit of docs/model.md, section 10) against
+// analytic solutions, the exact Hertz chain and the impulse steps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "../support/hertz_chain_reference.hpp"
+#include "../support/uniform_chain.hpp"
+#include "mimpact/common/error.hpp"
+#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+#include "mimpact/numerics/lzb_impulse_integrator.hpp"
+
+namespace mimpact::numerics {
+namespace {
+
+LzbResult lone_contact(double h, double u_minus, const ContactLaw& law, double tolerance) {
+  LzbAdaptiveIntegrator integrator({.tolerance = tolerance});
+  const ContactLaw laws[] = {law};
+  return integrator.integrate(Eigen::MatrixXd::Constant(1, 1, h),
+                              Eigen::VectorXd::Constant(1, u_minus), laws);
+}
+
+// One contact: u+ = -e u- for both compliance models, any exponent (energetic restitution,
+// docs/model.md, section 3), and the peak force from the energy of the approach.
+TEST(AdaptiveLone, RestitutionAndPeakForceAreExact) {
+  const double h = 1.0 / 0.02, u_minus = -0.7;
+  for (ComplianceModel model : {ComplianceModel::bi_stiffness, ComplianceModel::mono_stiffness})
+    for (double eta : {1.0, 1.5})
+      for (double e : {0.0, 0.3, 0.8, 1.0}) {
+        const ContactLaw law{.stiffness = 3e9, .exponent = eta, .restitution = e, .model = model};
+        const LzbResult result = lone_contact(h, u_minus, law, 1e-13);
+        ASSERT_EQ(result.status, LzbStatus::terminated);
+        EXPECT_NEAR(result.velocity(0), -e * u_minus, 1e-12)
+            << enum_name(model) << " eta " << eta << " e " << e;
+        // (1/2) u-^2 / h = K delta_M^(1+eta) / (1+eta), F_M = K delta_M^eta
+        const double delta_max = std::pow(
+            (1.0 + eta) * u_minus * u_minus / (2.0 * h * law.stiffness), 1.0 / (1.0 + eta));
+        EXPECT_NEAR(result.max_force(0) / (law.stiffness * std::pow(delta_max, eta)), 1.0, 1e-11);
+        EXPECT_EQ(result.residual_energy, 0.0);
+      }
+}
+
+// A linear bi-stiffness contact is a spring of stiffness K in compression and K / e^2 in
+// expansion: the impact lasts (1 + e) pi / 2 / sqrt(h K), the peak at pi / 2 / sqrt(h K).
+TEST(AdaptiveLone, LinearSpringDurationIsAQuarterPeriodPerPhase) {
+  const double h = 25.0, stiffness = 4e6;
+  for (double e : {0.3, 0.8, 1.0}) {
+    const LzbResult result =
+        lone_contact(h, -1.0, {.stiffness = stiffness, .exponent = 1.0, .restitution = e}, 1e-13);
+    const double quarter = std::numbers::pi / 2.0 / std::sqrt(h * stiffness);
+    EXPECT_NEAR(result.duration / ((1.0 + e) * quarter), 1.0, 1e-11) << e;
+    EXPECT_NEAR(result.time_of_max_force(0) / quarter, 1.0, 1e-11) << e;
+  }
+}
+
+// Chain C1 of Nguyen & Brogliato (2011): 21 steel beads of radius 10 mm, the first at 1 m/s.
+struct UniformChain {
+  int beads = 21;
+  double mass = 4.0 / 3.0 * std::numbers::pi * 0.01 * 0.01 * 0.01 * 7780.0;
+  // Hertz between equal spheres: K = E / (3 (1 - nu^2)) sqrt(2 R) ... as sqrt(R*) 4/3 E*
+  double stiffness = 4.0 / 3.0 * (203e9 / (2.0 * (1.0 - 0.09))) * std::sqrt(0.005);
+
+  int contacts() const { return beads - 1; }
+  Eigen::SparseMatrix<double> delassus() const {
+    return testing::uniform_chain_delassus(contacts(), mass);
+  }
+  // the first bead approaches the second at 1 m/s, the others rest
+  Eigen::VectorXd struck() const {
+    Eigen::VectorXd u_minus = Eigen::VectorXd::Zero(contacts());
+    u_minus(0) = -1.0;
+    return u_minus;
+  }
+};
+
+Eigen::VectorXd body_velocities(const UniformChain& chain, const Eigen::VectorXd& impulse) {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(chain.beads);
+  v(0) = 1.0;
+  for (int j = 0; j + 1 < chain.beads; ++j) {
+    v(j) -= impulse(j) / chain.mass;
+    v(j + 1) += impulse(j) / chain.mass;
+  }
+  return v;
+}
+
+// For e = 1 the continuous LZB impact is the Hertz chain: at tolerance 1e-10 the adaptive
+// integrator lands within 1e-8 m/s of the tests' own integration in time.
+TEST(AdaptiveChain, ElasticChainIsTheExactHertzChain) {
+  const UniformChain chain;
+  const int contacts = chain.contacts();
+  const std::vector<ContactLaw> laws(contacts, ContactLaw{.stiffness = chain.stiffness});
+  LzbAdaptiveIntegrator integrator({.tolerance = 1e-10});
+  const LzbResult result = integrator.integrate(chain.delassus(), chain.struck(), laws);
+  ASSERT_EQ(result.status, LzbStatus::terminated);
+  const Eigen::VectorXd velocity = body_velocities(chain, result.impulse);
+  Eigen::VectorXd start = Eigen::VectorXd::Zero(chain.beads);
+  start(0) = 1.0;
+  const testing::HertzChainOutcome exact =
+      testing::integrate_hertz_chain(Eigen::VectorXd::Constant(chain.beads, chain.mass), start,
+                                     Eigen::VectorXd::Constant(contacts, chain.stiffness));
+  const double error = (velocity - exact.velocity).cwiseAbs().maxCoeff();
+  std::printf("C1 beads, tolerance 1e-10: max |v+ - v+_Hertz| = %.3g m/s in %lld steps\n", error,
+              (long long)result.steps);
+  EXPECT_LE(error, 1e-8);
+  EXPECT_NEAR(velocity.sum(), 1.0, 1e-12);         // momentum
+  EXPECT_NEAR(velocity.squaredNorm(), 1.0, 1e-9);  // energy
+}
+
+// The impulse steps converge to the adaptive result: for e = 1 at first order, so that their
+// Richardson extrapolation from delta_p = 2e-6 and 1e-6 lands within 1e-6 m/s of it.
+TEST(AdaptiveChain, ElasticChainIsTheLimitOfTheImpulseSteps) {
+  const UniformChain chain;
+  const int contacts = chain.contacts();
+  const Eigen::SparseMatrix<double> H = chain.delassus();
+  const Eigen::VectorXd u_minus = chain.struck();
+  const std::vector<ContactLaw> laws(contacts, ContactLaw{.stiffness = chain.stiffness});
+  LzbAdaptiveIntegrator adaptive({.tolerance = 1e-10});
+  const LzbResult continuous = adaptive.integrate(H, u_minus, laws);
+  LzbImpulseIntegrator coarse({.delta_p = 2e-6}), fine({.delta_p = 1e-6});
+  const Eigen::VectorXd extrapolated =
+      2.0 * fine.integrate(H, u_minus, laws).velocity - coarse.integrate(H, u_minus, laws).velocity;
+  const double difference = (continuous.velocity - extrapolated).cwiseAbs().maxCoeff();
+  std::printf("C1 beads: adaptive %lld steps, max |u+ - u+_Richardson| = %.3g m/s\n",
+              (long long)continuous.steps, difference);
+  EXPECT_LE(difference, 1e-6);
+}
+
+// At e = 0.6 LZB's re-loading rule dissipates every re-compression: the chain ends as one
+// block, every bead at V / 21 (docs/model.md, section 3). The continuous impact reaches it to
+// the tolerance; the impulse steps approach it as delta_p shrinks.
+TEST(AdaptiveChain, DissipativeChainEndsAsOneBlock) {
+  const UniformChain chain;
+  const int contacts = chain.contacts();
+  const Eigen::SparseMatrix<double> H = chain.delassus();
+  const Eigen::VectorXd u_minus = chain.struck();
+  for (ComplianceModel model : {ComplianceModel::bi_stiffness, ComplianceModel::mono_stiffness}) {
+    const std::vector<ContactLaw> laws(
+        contacts, ContactLaw{.stiffness = chain.stiffness, .restitution = 0.6, .model = model});
+    LzbAdaptiveIntegrator adaptive({.tolerance = 1e-10});
+    const LzbResult continuous = adaptive.integrate(H, u_minus, laws);
+    ASSERT_EQ(continuous.status, LzbStatus::terminated);
+    const Eigen::VectorXd velocity = body_velocities(chain, continuous.impulse);
+    const double spread = (velocity.array() - 1.0 / chain.beads).abs().maxCoeff();
+    std::printf("%s, e = 0.6: adaptive %lld steps, max |v+ - V/21| = %.3g m/s\n",
+                std::string(enum_name(model)).c_str(), (long long)continuous.steps, spread);
+    EXPECT_LE(spread, 1e-9);
+    double previous = INFINITY;
+    for (double delta_p : {4e-6, 1e-6}) {
+      LzbImpulseIntegrator steps({.delta_p = delta_p});
+      const double distance =
+          (steps.integrate(H, u_minus, laws).velocity - continuous.velocity).cwiseAbs().maxCoeff();
+      EXPECT_LT(distance, previous / 2.0) << delta_p;
+      previous = distance;
+    }
+  }
+}
+
+// The work follows the wave: ten times more beads cost about ten times the steps, with as
+// many contacts integrated per step, since the contacts ahead of and behind the wave are not
+// integrated.
+TEST(AdaptiveChain, WorkPerStepDoesNotGrowWithTheChain) {
+  std::vector<double> steps, contacts_per_step;
+  for (int contacts : {100, 1000}) {
+    const UniformChain chain{.beads = contacts + 1};
+    const std::vector<ContactLaw> laws(contacts, ContactLaw{.stiffness = chain.stiffness});
+    LzbAdaptiveIntegrator adaptive({.tolerance = 1e-6});
+    const LzbResult result = adaptive.integrate(chain.delassus(), chain.struck(), laws);
+    ASSERT_EQ(result.status, LzbStatus::terminated);
+    steps.push_back(double(result.steps));
+    contacts_per_step.push_back(double(result.contact_steps) / double(result.steps));
+    std::printf("%d contacts: %lld steps, %.1f contacts per step\n", contacts,
+                (long long)result.steps, contacts_per_step.back());
+  }
+  EXPECT_LT(steps[1] / steps[0], 12.0);
+  EXPECT_LT(contacts_per_step[1] / contacts_per_step[0], 1.5);
+}
+
+TEST(AdaptiveInput, BadOptionsAndInputAreRefusedByName) {
+  auto message_of = [](auto&& call) {
+    try {
+      call();
+    } catch (const InvalidInput& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(
+      message_of([] { LzbAdaptiveIntegrator({.tolerance = 1e-15}); }).find("tolerance = 1e-15"),
+      std::string::npos);
+  EXPECT_NE(message_of([] { LzbAdaptiveIntegrator({.tolerance = NAN}); }).find("tolerance"),
+            std::string::npos);
+  LzbAdaptiveIntegrator integrator;
+  const ContactLaw laws[] = {ContactLaw{.stiffness = 1e9}};
+  EXPECT_NE(message_of([&] {
+              integrator.integrate(Eigen::MatrixXd::Constant(1, 1, 1.0),
+                                   Eigen::VectorXd::Constant(1, 0.5), laws);
+            }).find("no approaching contact"),
+            std::string::npos);
+  EXPECT_NE(message_of([&] { integrator.set_tolerance(0.5); }).find("tolerance = 0.5"),
+            std::string::npos);
+}
+
+// The observer sees the impact at every sample_interval: times evenly spaced, impulses
+// growing, the peak force of the samples at most the located maximum.
+TEST(AdaptiveObserver, SamplesAreEvenlySpacedAndBoundedByTheLocatedPeak) {
+  const double h = 50.0;
+  LzbAdaptiveIntegrator integrator({.tolerance = 1e-10, .sample_interval = 1e-6});
+  const ContactLaw laws[] = {ContactLaw{.stiffness = 3e9, .restitution = 0.8}};
+  ImpactHistory history;
+  const LzbResult result = integrator.integrate(Eigen::MatrixXd::Constant(1, 1, h),
+                                                Eigen::VectorXd::Constant(1, -0.7), laws, &history);
+  ASSERT_GE(history.time.size(), 50u);
+  double peak = 0.0;
+  for (std::size_t k = 1; k + 1 < history.time.size(); ++k) {
+    EXPECT_NEAR(history.time[k], 1e-6 * double(k), 1e-15);
+    EXPECT_GE(history.impulse[k][0], history.impulse[k - 1][0]);
+    peak = std::max(peak, history.force[k][0]);
+  }
+  EXPECT_LE(peak, result.max_force(0) * (1.0 + 1e-12));
+  EXPECT_GE(peak, 0.99 * result.max_force(0));
+  EXPECT_EQ(history.time.back(), result.duration);
+}
+
+}  // namespace
+}  // namespace mimpact::numerics
