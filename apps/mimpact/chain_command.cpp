@@ -66,13 +66,25 @@ void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
       delta_p, share, natural_impulse, 100.0 * share);
 }
 
-// The LZB impact with the recorder and, on a terminal, the progress report as observers.
+// What the report's second line says of the method.
+std::string method_line(const chains::ChainScene& scene, std::optional<double> delta_p) {
+  if (scene.adaptive())
+    return "adaptive LZB, tolerance " + to_text(scene.impact_options().adaptive.tolerance);
+  if (delta_p) return "LZB impulse steps, delta_p = " + to_text(*delta_p) + " N s";
+  return "compliant contacts integrated in time";
+}
+
+// The LZB impact (at delta_p for the impulse steps, none for the adaptive integrator) with
+// the recorder and, on a terminal, the progress report as observers.
 chains::ChainImpact run_lzb(const chains::ChainScene& scene, const chains::ChainModel& model,
-                            double delta_p, const std::string& delta_p_field, bool writes_series,
-                            bool quiet, chains::ChainTimeSeries& series) {
-  chains::check_delta_p(model, delta_p, scene.impact_options().integrator.max_steps, delta_p_field);
-  numerics::LzbOptions options = scene.lzb_options(delta_p);
-  warn_if_coarse(delta_p, chains::natural_impulse(model), quiet);
+                            std::optional<double> delta_p, const std::string& delta_p_field,
+                            bool writes_series, bool quiet, chains::ChainTimeSeries& series) {
+  plugins::LzbImpactOptions options = scene.impact_options();
+  if (delta_p) {
+    chains::check_delta_p(model, *delta_p, options.impulse_steps.max_steps, delta_p_field);
+    options.impulse_steps = scene.lzb_options(*delta_p);
+    warn_if_coarse(*delta_p, chains::natural_impulse(model), quiet);
+  }
   chains::ChainRecorder recorder(model, scene.record);
   ProgressReporter progress;
   Observers observers;
@@ -82,8 +94,8 @@ chains::ChainImpact run_lzb(const chains::ChainScene& scene, const chains::Chain
   }
   if (!quiet && isatty(STDERR_FILENO)) {
     if (observers.empty()) {
-      options.sample_every = 2'000'000;
-      options.sampled_contacts = {0};
+      options.impulse_steps.sample_every = 2'000'000;
+      options.impulse_steps.sampled_contacts = {0};
     }
     observers.add(progress);
   }
@@ -137,6 +149,10 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (!lzb && delta_p_option)
     throw InvalidInput("--delta-p is the step of the LZB method; " + scene_file +
                        " has method \"compliant\"");
+  if (scene.adaptive() && (delta_p_option || !tolerance.empty()))
+    throw InvalidInput(std::string(delta_p_option ? "--delta-p" : "--tolerance") +
+                       " chooses the step of the impulse-step integrator; " + scene_file +
+                       " has \"integrator\": \"adaptive\", whose accuracy is impact.tolerance");
   if (!tolerance.empty()) {
     study = analysis::study_convergence(
         chains::impact_problem(model),
@@ -146,7 +162,7 @@ int chain_command(const std::vector<std::string>& arguments) {
                   " N s met --tolerance; loosen it or start smaller; no output written");
     delta_p = study->rows.back().delta_p;
   }
-  if (lzb && !delta_p)
+  if (lzb && !scene.adaptive() && !delta_p)
     throw InvalidInput(scene_file +
                        ": missing field impact.delta_p (or give --delta-p or --tolerance)");
   if (!lzb) delta_p.reset();  // the compliant method has no delta_p
@@ -158,7 +174,7 @@ int chain_command(const std::vector<std::string>& arguments) {
   chains::ChainImpact impact;
   chains::ChainTimeSeries series;
   if (lzb) {
-    impact = run_lzb(scene, model, *delta_p, delta_p_option ? "--delta-p" : "impact.delta_p",
+    impact = run_lzb(scene, model, delta_p, delta_p_option ? "--delta-p" : "impact.delta_p",
                      writes_series, quiet, series);
   } else {
     chains::CompliantChainRun run =
@@ -169,9 +185,15 @@ int chain_command(const std::vector<std::string>& arguments) {
   nlohmann::ordered_json summary =
       chains::chain_summary(model, impact, delta_p, writes_series ? &series : nullptr);
   summary["method"] = lzb ? "lzb" : "compliant";
+  if (scene.adaptive()) {
+    summary["integrator"] = "adaptive";
+    summary["tolerance"] = scene.impact_options().adaptive.tolerance;
+  }
   if (study) summary["convergence"] = convergence_json(*study);
 
-  if (!quiet) std::cerr << scene_file << ": " << chains::chain_report(model, impact, delta_p);
+  if (!quiet)
+    std::cerr << scene_file << ": "
+              << chains::chain_report(model, impact, method_line(scene, delta_p));
   if (impact.lzb.status != numerics::LzbStatus::terminated)
     throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
   if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite() &&

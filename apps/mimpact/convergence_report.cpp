@@ -21,7 +21,8 @@ analysis::ConvergenceOptions convergence_options(
   options.first_delta_p = first           ? *first
                           : scene.delta_p ? *scene.delta_p
                                           : 1e-3 * chains::natural_impulse(model);
-  chains::check_delta_p(model, options.first_delta_p, scene.impact_options().integrator.max_steps,
+  chains::check_delta_p(model, options.first_delta_p,
+                        scene.impact_options().impulse_steps.max_steps,
                         first ? first_option : "impact.delta_p");
   const char* names[] = {"--tolerance eps+", "--tolerance eps"};
   for (std::size_t k = 0; k < tolerance.size(); ++k)

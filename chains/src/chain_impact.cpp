@@ -169,9 +169,14 @@ void add_pulses(const ChainModel& model, const ChainTimeSeries& series,
 
 ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
                                   numerics::ImpactObserver* observer) {
+  return simulate_chain_impact(model, plugins::LzbImpactOptions{.impulse_steps = options},
+                               observer);
+}
+
+ChainImpact simulate_chain_impact(const ChainModel& model, const plugins::LzbImpactOptions& options,
+                                  numerics::ImpactObserver* observer) {
   plugins::register_plugins();
-  auto impacts = kernel::impact_problems().create(
-      "lzb", kernel::to_parameters(plugins::LzbImpactOptions{.integrator = options}));
+  auto impacts = kernel::impact_problems().create("lzb", kernel::to_parameters(options));
   impacts->set_impact_observer(observer);
   kernel::Simulation simulation(
       build_chain_system(model), kernel::integrators().create("event-driven"),
@@ -280,25 +285,19 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
 }
 
 std::string chain_report(const ChainModel& model, const ChainImpact& impact,
-                         std::optional<double> delta_p) {
+                         const std::string& method) {
   const double energy_before = kinetic_energy(model, model.velocity);
   const double energy_after = kinetic_energy(model, impact.velocity_after);
   char line[256];
   std::string report;
   std::snprintf(line, sizeof line, "%lld bodies, %lld contacts, ", (long long)model.body_count(),
                 (long long)model.contact_count());
-  report += line;
-  if (delta_p)
-    std::snprintf(line, sizeof line, "delta_p = %g N s\n", *delta_p);
-  else
-    std::snprintf(line, sizeof line, "compliant contacts integrated in time\n");
-  report += line;
-  std::snprintf(line, sizeof line,
-                "%lld impulse steps in %.3g s of computation; the impact lasts %.6g s (%s)\n",
-                (long long)impact.lzb.steps, impact.wall_time, impact.lzb.duration,
-                impact.cut_by_end_time
-                    ? "cut by compliant.end_time with contacts still closed"
-                    : std::string(numerics::to_string(impact.lzb.status)).c_str());
+  report += line + method + "\n";
+  std::snprintf(
+      line, sizeof line, "%lld steps in %.3g s of computation; the impact lasts %.6g s (%s)\n",
+      (long long)impact.lzb.steps, impact.wall_time, impact.lzb.duration,
+      impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
+                             : std::string(numerics::to_string(impact.lzb.status)).c_str());
   report += line;
   std::snprintf(line, sizeof line,
                 "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum %.9g -> %.9g N s\n",

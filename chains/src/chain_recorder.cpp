@@ -44,9 +44,10 @@ ChainRecorder::ChainRecorder(const ChainModel& model, RecordSpec record)
   sampled_ = needed;
 }
 
-void ChainRecorder::configure(numerics::LzbOptions& options) const {
-  options.sample_every = record_.every;
-  options.sampled_contacts = sampled_;
+void ChainRecorder::configure(plugins::LzbImpactOptions& options) const {
+  options.impulse_steps.sample_every = record_.every;
+  options.impulse_steps.sampled_contacts = sampled_;
+  options.adaptive.sample_interval = record_.interval;
 }
 
 void ChainRecorder::observe(const numerics::ImpactSample& sample) {

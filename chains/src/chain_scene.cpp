@@ -74,7 +74,11 @@ void split_delta_p(ChainScene& scene, const std::string& source) {
   const plugins::LzbImpactOptions options = kernel::options_from<plugins::LzbImpactOptions>(
       scene.impact, {.name = source, .path = "impact", .unknown = "key"});
   if (!scene.impact.contains("delta_p")) return;
-  scene.delta_p = options.integrator.delta_p;
+  if (options.integrator == plugins::LzbIntegrator::adaptive)
+    throw InvalidInput(source + ": impact.delta_p = " + to_text(options.impulse_steps.delta_p) +
+                       " is the step of the impulse-step integrator; allowed with "
+                       "\"integrator\": \"adaptive\": impact.tolerance");
+  scene.delta_p = options.impulse_steps.delta_p;
   scene.impact.erase("delta_p");
 }
 
@@ -149,12 +153,16 @@ const StrikerSpec* ChainScene::striker(Side side) const {
 plugins::LzbImpactOptions ChainScene::impact_options() const {
   plugins::LzbImpactOptions options =
       kernel::options_from<plugins::LzbImpactOptions>(impact, {.name = "impact"});
-  if (delta_p) options.integrator.delta_p = *delta_p;
+  if (delta_p) options.impulse_steps.delta_p = *delta_p;
   return options;
 }
 
+bool ChainScene::adaptive() const {
+  return method == Method::lzb && impact_options().integrator == plugins::LzbIntegrator::adaptive;
+}
+
 numerics::LzbOptions ChainScene::lzb_options(double impulse_step) const {
-  numerics::LzbOptions options = impact_options().integrator;
+  numerics::LzbOptions options = impact_options().impulse_steps;
   options.delta_p = impulse_step;
   validate(options, "impact");
   return options;

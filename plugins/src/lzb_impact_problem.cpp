@@ -14,15 +14,47 @@ using kernel::Index;
 
 namespace {
 
+// Refuses the options of the integrator not chosen (they would be silently unused).
+void check_chosen_integrator(const LzbImpactOptions& options) {
+  const LzbImpactOptions defaults;
+  const bool adaptive = options.integrator == LzbIntegrator::adaptive;
+  auto refuse = [&](const char* field, double value) {
+    throw InvalidInput(std::string("impact problem \"lzb\": ") + field + " = " +
+                       std::to_string(value) + " is an option of the " +
+                       (adaptive ? "impulse-step" : "adaptive") + " integrator; allowed: " +
+                       (adaptive ? "\"tolerance\" with \"integrator\": \"adaptive\""
+                                 : "\"delta_p\" with \"integrator\": \"impulse-step\", or "
+                                   "\"integrator\": \"adaptive\""));
+  };
+  if (adaptive) {
+    if (options.impulse_steps.delta_p != defaults.impulse_steps.delta_p)
+      refuse("delta_p", options.impulse_steps.delta_p);
+    if (options.relative_delta_p != defaults.relative_delta_p)
+      refuse("relative_delta_p", options.relative_delta_p);
+  } else if (options.adaptive.tolerance != defaults.adaptive.tolerance) {
+    refuse("tolerance", options.adaptive.tolerance);
+  }
+}
+
 LzbImpactOptions checked(LzbImpactOptions options) {
   validate(options, "impact problem \"lzb\"");
+  check_chosen_integrator(options);
   return options;
 }
 
 }  // namespace
 
+numerics::LzbAdaptiveOptions LzbImpactOptions::adaptive_options() const {
+  numerics::LzbAdaptiveOptions options = adaptive;
+  options.max_steps = impulse_steps.max_steps;
+  options.sampled_contacts = impulse_steps.sampled_contacts;
+  return options;
+}
+
 LzbImpactProblem::LzbImpactProblem(LzbImpactOptions options)
-    : options_(checked(std::move(options))), integrator_(options_.integrator) {}
+    : options_(checked(std::move(options))),
+      impulse_steps_(options_.impulse_steps),
+      adaptive_(options_.adaptive_options()) {}
 
 void LzbImpactProblem::check_law(const kernel::NonSmoothLaw& law, const std::string& which) const {
   if (!dynamic_cast<const LzbLaw*>(&law))
@@ -82,22 +114,16 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
           ? numerics::Delassus(W, system.mass_matrix(q).diagonal().cwiseInverse())
           : numerics::Delassus(W, system.mass_matrix(q));
   const Eigen::VectorXd u_minus = W.transpose() * report.generalized_velocity_before;
-  if (options_.relative_delta_p > 0.0) {
-    const double natural_impulse =
-        (-u_minus).cwiseMax(0.0).cwiseQuotient(Eigen::VectorXd(delassus.H().diagonal())).maxCoeff();
-    if (natural_impulse > 0.0) integrator_.set_delta_p(options_.relative_delta_p * natural_impulse);
-  }
   std::optional<InteractionSamples> samples;
   if (observer_) {
     samples.emplace(closed, *observer_);
-    const std::vector<Index>& sampled = options_.integrator.sampled_contacts;
-    if (!sampled.empty()) integrator_.set_sampled_contacts(sampled_places(closed, sampled));
+    const std::vector<Index>& sampled = options_.impulse_steps.sampled_contacts;
+    if (!sampled.empty()) {
+      impulse_steps_.set_sampled_contacts(sampled_places(closed, sampled));
+      adaptive_.set_sampled_contacts(sampled_places(closed, sampled));
+    }
   }
-  numerics::ImpactObserver* observer = samples ? &*samples : nullptr;
-  const numerics::LzbResult result =
-      Index(closed.size()) <= options_.dense_up_to
-          ? integrator_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
-          : integrator_.integrate(delassus.H(), u_minus, laws_, observer);
+  const numerics::LzbResult result = integrate(delassus, u_minus, samples ? &*samples : nullptr);
 
   report.status = result.status == numerics::LzbStatus::terminated
                       ? kernel::ImpactStatus::terminated
@@ -111,8 +137,12 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   report.max_force = result.max_force;
   report.time_of_max_force = result.time_of_max_force;
   // the integrator's termination tolerance tol_u_j
-  report.velocity_resolution = delassus.H().diagonal().unaryExpr(
-      [&](double h_jj) { return integrator_.options().velocity_tolerance(h_jj); });
+  if (options_.integrator == LzbIntegrator::adaptive)
+    report.velocity_resolution = Eigen::VectorXd::Constant(
+        u_minus.size(), options_.adaptive.tolerance * (-u_minus.minCoeff()));
+  else
+    report.velocity_resolution = delassus.H().diagonal().unaryExpr(
+        [&](double h_jj) { return impulse_steps_.options().velocity_tolerance(h_jj); });
   report.steps = result.steps;
   report.contact_steps = result.contact_steps;
   report.residual_energy = result.residual_energy;
@@ -127,6 +157,25 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   report.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
+}
+
+// The chosen integrator on H, dense for small impacts. The impulse steps take delta_p as a
+// share of the impact's natural impulse when relative_delta_p is set.
+numerics::LzbResult LzbImpactProblem::integrate(const numerics::Delassus& delassus,
+                                                const Eigen::VectorXd& u_minus,
+                                                numerics::ImpactObserver* observer) {
+  const bool dense = delassus.H().rows() <= options_.dense_up_to;
+  if (options_.integrator == LzbIntegrator::adaptive)
+    return dense ? adaptive_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
+                 : adaptive_.integrate(delassus.H(), u_minus, laws_, observer);
+  if (options_.relative_delta_p > 0.0) {
+    const double natural_impulse =
+        (-u_minus).cwiseMax(0.0).cwiseQuotient(Eigen::VectorXd(delassus.H().diagonal())).maxCoeff();
+    if (natural_impulse > 0.0)
+      impulse_steps_.set_delta_p(options_.relative_delta_p * natural_impulse);
+  }
+  return dense ? impulse_steps_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
+               : impulse_steps_.integrate(delassus.H(), u_minus, laws_, observer);
 }
 
 }  // namespace mimpact::plugins

@@ -27,12 +27,12 @@ struct Pulses {
 Pulses run_paper_scene(chains::ChainScene scene) {
   const chains::ChainModel model = chains::build_chain_model(scene);
   chains::ChainRecorder recorder(model, scene.record);
-  numerics::LzbOptions options;
-  options.delta_p = *scene.delta_p;
+  plugins::LzbImpactOptions options;
+  options.impulse_steps.delta_p = *scene.delta_p;
   recorder.configure(options);
   const chains::ChainImpact impact = chains::simulate_chain_impact(model, options, &recorder);
   const chains::ChainTimeSeries series = recorder.series(impact);
-  return {chains::chain_summary(model, impact, options.delta_p, &series)};
+  return {chains::chain_summary(model, impact, options.impulse_steps.delta_p, &series)};
 }
 
 chains::ChainScene paper_scene(const std::string& name) {

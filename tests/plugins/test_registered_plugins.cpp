@@ -24,7 +24,7 @@ TEST(RegisteredPlugins, CreatedByNameWithTheirParameters) {
 
   auto impacts = kernel::impact_problems().create("lzb", {{"delta_p", 1e-7}, {"dense_up_to", 4}});
   const auto& lzb = dynamic_cast<LzbImpactProblem&>(*impacts);
-  EXPECT_EQ(lzb.options().integrator.delta_p, 1e-7);
+  EXPECT_EQ(lzb.options().impulse_steps.delta_p, 1e-7);
   EXPECT_EQ(lzb.options().dense_up_to, 4);
 
   EXPECT_EQ(kernel::contact_force_problems().create("acceleration-lcp")->name(),
@@ -67,7 +67,7 @@ TEST(RegisteredPlugins, IntegerParametersMustBeWholeAndInRange) {
       },
       "max_pivots = -1 is invalid");
   auto impacts = kernel::impact_problems().create("lzb", {{"max_steps", 1e6}});
-  EXPECT_EQ(dynamic_cast<LzbImpactProblem&>(*impacts).options().integrator.max_steps, 1'000'000);
+  EXPECT_EQ(dynamic_cast<LzbImpactProblem&>(*impacts).options().impulse_steps.max_steps, 1'000'000);
 }
 
 // A ball of 1 kg on a vertical line, a floor at z = 0 with a linear spring law (K = 1e6
@@ -148,7 +148,7 @@ TEST(RegisteredPlugins, DefaultsAreTheOptionsDefaults) {
   EXPECT_EQ(kernel::integrators().defaults("event-driven"),
             kernel::to_parameters(EventDrivenOptions{}));
   EXPECT_EQ(kernel::impact_problems().defaults("lzb")["delta_p"],
-            LzbImpactOptions{}.integrator.delta_p);
+            LzbImpactOptions{}.impulse_steps.delta_p);
   EXPECT_FALSE(kernel::impact_problems().defaults("lzb").contains("fixed_thresholds"));
 }
 

@@ -30,7 +30,10 @@ struct ChainImpact {
 
 // Through the kernel: the chain's system, the event-driven integrator, the LZB impact
 // problem; the run ends with the impact of the last striker to arrive. `observer` sees the
-// impulse steps of every impact (sampling as `options` says).
+// samples of every impact (as `options` says) with the chain's contact indices.
+ChainImpact simulate_chain_impact(const ChainModel& model, const plugins::LzbImpactOptions& options,
+                                  numerics::ImpactObserver* observer = nullptr);
+// The same with the impulse steps of `options`.
 ChainImpact simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
                                   numerics::ImpactObserver* observer = nullptr);
 
@@ -59,8 +62,9 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
                                      std::optional<double> delta_p,
                                      const ChainTimeSeries* series = nullptr);
 
-// A few lines for people: sizes, steps, duration, energy and momentum, post-impact velocities.
+// A few lines for people: sizes, the method (`method`, one line: "delta_p = 1e-06 N s"),
+// steps, duration, energy and momentum, post-impact velocities.
 std::string chain_report(const ChainModel& model, const ChainImpact& impact,
-                         std::optional<double> delta_p);
+                         const std::string& method);
 
 }  // namespace mimpact::chains

@@ -32,9 +32,10 @@ class ChainRecorder : public numerics::ImpactObserver {
  public:
   ChainRecorder(const ChainModel& model, RecordSpec record);
 
-  // The sampling it needs: every record.every steps, these interactions (the recorded
+  // The sampling it needs: every record.every impulse steps or record.interval seconds of
+  // the adaptive integration, these interactions (the recorded
   // contacts and the ones next to recorded bodies, whose impulses give the bodies' velocities).
-  void configure(numerics::LzbOptions& options) const;
+  void configure(plugins::LzbImpactOptions& options) const;
   void observe(const numerics::ImpactSample& sample) override;
   ChainTimeSeries series(const ChainImpact& impact) const;
 

@@ -75,8 +75,8 @@ struct WallSpec {
 struct RecordSpec {
   std::vector<int> contacts;
   std::vector<int> bodies;
-  int every = 1;           // LZB: one sample every this many impulse steps
-  double interval = 1e-7;  // compliant: one sample every this long (s)
+  int every = 1;           // LZB impulse steps: one sample every this many steps
+  double interval = 1e-7;  // compliant and adaptive LZB: one sample every this long (s)
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -175,6 +175,8 @@ struct ChainScene {
   // The "lzb" impact problem's options as the scene gives them (delta_p its own, or the
   // default), and the LZB integrator's among them at delta_p = impulse_step (N s).
   plugins::LzbImpactOptions impact_options() const;
+  // The LZB method with "integrator": "adaptive" (a tolerance, no delta_p).
+  bool adaptive() const;
   numerics::LzbOptions lzb_options(double impulse_step) const;
 };
 

@@ -1,14 +1,35 @@
 #pragma once
 
+#include <array>
+#include <string_view>
+#include <utility>
+
 #include "mimpact/common/fields.hpp"
 #include "mimpact/kernel/one_step_ns_problem.hpp"
+#include "mimpact/numerics/delassus.hpp"
+#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::plugins {
 
+// How the LZB impact is integrated: by the impulse steps of Nguyen & Brogliato (2011), first
+// order in delta_p, or by the adaptive integration of their continuous limit to a tolerance
+// (numerics::LzbAdaptiveIntegrator).
+enum class LzbIntegrator { impulse_step, adaptive };
+
+constexpr auto enum_names(LzbIntegrator) {
+  using Name = std::pair<LzbIntegrator, std::string_view>;
+  return std::array{Name{LzbIntegrator::impulse_step, "impulse-step"},
+                    Name{LzbIntegrator::adaptive, "adaptive"}};
+}
+
 struct LzbImpactOptions {
-  // The impulse-step integrator's options; its sampled_contacts are interactions of the system.
-  numerics::LzbOptions integrator;
+  LzbIntegrator integrator = LzbIntegrator::impulse_step;
+  // The impulse steps' options; max_steps and sampled_contacts (interactions of the system)
+  // serve the adaptive integrator too.
+  numerics::LzbOptions impulse_steps;
+  // The adaptive integrator's options but those two.
+  numerics::LzbAdaptiveOptions adaptive;
   // When > 0, each impact takes delta_p = relative_delta_p * max_j |u_j-| / H_jj, this
   // share of its natural impulse (the impulse that stops its fastest contact alone), instead
   // of integrator.delta_p: impacts of very different strengths (a ball's shrinking bounces)
@@ -18,10 +39,19 @@ struct LzbImpactOptions {
   // steps cost in proportion to the contacts taking part.
   Eigen::Index dense_up_to = 16;
 
-  // The integrator's fields are the problem's own: {"delta_p": 1e-6, "relative_delta_p": ...}.
+  // The adaptive integrator's options, with max_steps and sampled_contacts from impulse_steps.
+  numerics::LzbAdaptiveOptions adaptive_options() const;
+
+  // The integrators' fields are the problem's own: {"integrator": "adaptive", "tolerance":
+  // 1e-8} or {"delta_p": 1e-6, "relative_delta_p": ...}.
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
-    numerics::LzbOptions::visit_fields(self.integrator, field);
+    field("integrator", self.integrator);
+    numerics::LzbOptions::visit_fields(self.impulse_steps, field);
+    numerics::LzbAdaptiveOptions::visit_fields(
+        self.adaptive, [&](std::string_view name, auto& value, auto&&... allowed) {
+          if (name == "tolerance" || name == "sample_interval") field(name, value, allowed...);
+        });
     field("relative_delta_p", self.relative_delta_p,
           within(0.0, 1.0, "0 for off, else a share of the natural impulse", false, true));
     field("dense_up_to", self.dense_up_to, within(0, 2147483648.0));
@@ -42,14 +72,18 @@ class LzbImpactProblem : public kernel::ImpactProblem {
   kernel::ImpactReport solve(kernel::NonSmoothDynamicalSystem& system,
                              std::span<const kernel::Index> closed, double time) override;
 
-  // Sees the impulse steps of every impact solved from now on (none when null), the
-  // interactions of options().integrator.sampled_contacts among them (all when none is).
+  // Sees the samples of every impact solved from now on (none when null), the interactions
+  // of options().impulse_steps.sampled_contacts among them (all when none is).
   void set_impact_observer(numerics::ImpactObserver* observer) override { observer_ = observer; }
   const LzbImpactOptions& options() const { return options_; }
 
  private:
+  numerics::LzbResult integrate(const numerics::Delassus& delassus, const Eigen::VectorXd& u_minus,
+                                numerics::ImpactObserver* observer);
+
   LzbImpactOptions options_;
-  numerics::LzbImpulseIntegrator integrator_;
+  numerics::LzbImpulseIntegrator impulse_steps_;
+  numerics::LzbAdaptiveIntegrator adaptive_;
   std::vector<numerics::ContactLaw> laws_;
   numerics::ImpactObserver* observer_ = nullptr;
 };
