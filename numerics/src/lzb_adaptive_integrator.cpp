@@ -107,7 +107,8 @@ class LzbAdaptiveIntegrator::Impact {
   std::size_t active_ = 0;
   State y_, y_at_;
   std::vector<double> rhs_velocity_, velocity_at_;
-  Watched before_, after_;
+  Watched before_, after_, probe_;
+  std::vector<Index> previous_members_;  // begin_segment's buffer
   ImpactSampler sampler_;
 };
 
@@ -168,8 +169,9 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
 // contacts their forces reach through H. The ODE state starts at [delta / scale, 0].
 void LzbAdaptiveIntegrator::Impact::begin_segment() {
   for (Index j : members_) member_of_[j] = -1;
-  std::vector<Index> previous;
+  std::vector<Index>& previous = previous_members_;
   previous.swap(members_);
+  members_.clear();
   // the active contacts were members already (a contact becomes active only by a switch at a
   // member), so the new active set is found among the previous members, in their order
   for (Index j : previous)
@@ -259,7 +261,7 @@ void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& 
                                            const Watched& after,
                                            std::vector<internal::Crossing>& found) {
   const double resolution = 4.0 * DBL_EPSILON * t1;
-  Watched probe;
+  Watched& probe = probe_;
   auto check = [&](std::size_t member, int kind) {
     const double q0 = watched_value(member, kind, before);
     const double q1 = watched_value(member, kind, after);
