@@ -25,10 +25,13 @@ inline chains::ChainImpact run_chain(const chains::ChainModel& model, double del
   return chains::simulate_chain_impact(model, options, observer);
 }
 
+// Relative to the momentum the bodies carry, sum m |v|: the total is zero when strikers meet
+// from both sides.
 inline double relative_momentum_change(const chains::ChainModel& model,
                                        const chains::ChainImpact& impact) {
   const double before = chains::momentum(model, model.velocity);
-  return std::abs(chains::momentum(model, impact.velocity_after) - before) / std::abs(before);
+  const double carried = chains::momentum(model, model.velocity.cwiseAbs());
+  return std::abs(chains::momentum(model, impact.velocity_after) - before) / carried;
 }
 
 inline double kinetic_energy_ratio(const chains::ChainModel& model,
