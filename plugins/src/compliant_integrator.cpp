@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <queue>
 
-#include "contact_dynamics.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/numerics/internal/dense_output.hpp"
 #include "mimpact/numerics/internal/event_scan.hpp"
@@ -13,40 +14,105 @@
 
 namespace mimpact::plugins {
 
+using kernel::Index;
+using kernel::MatrixXd;
+using kernel::VectorXd;
 using numerics::internal::Crossing;
 
 namespace {
 
 // What ends a segment of the integration at a contact.
-enum class EventKind { none, closing, opening, turning };
+enum class EventKind { none, joining, leaving, turning };
 
-}  // namespace
+constexpr double kNever = std::numeric_limits<double>::infinity();
 
-// The gaps (m) and normal velocities (m/s) of every contact at one time.
+// A body of the system: its block of coordinates and how it moves now. Out of the motion it
+// flies freely, q(t) = anchor_q + anchor_v (t - anchor_time); in it, its displacement from
+// anchor_q and its velocity are part of the integrated state, from slot on.
+struct Body {
+  Index offset = 0, size = 0;  // in the system's global coordinates
+  bool can_fly = false;        // no force, a constant mass, only linear relations
+  bool has_force = false, constant_mass = true, diagonal = true, factorized = false;
+  VectorXd inverse_diagonal;
+  Eigen::LLT<MatrixXd> cholesky;
+  MatrixXd mass;
+  mutable VectorXd q, v;  // workspaces of the right-hand side and of write_back
+  VectorXd force;
+  bool in_motion = false;
+  Index slot = -1;
+  double anchor_time = 0.0;
+  int loaded_contacts = 0;  // joined contacts touching it
+};
+
+// W_j entry of a linear relation: coordinate `local` of `body`.
+struct JacobianEntry {
+  Index body = 0, local = 0;
+  double value = 0.0;
+};
+
+struct Contact {
+  std::vector<JacobianEntry> entries;  // linear relations: constant
+  double anchor_gap = 0.0;             // linear relations: the gap at the bodies' anchors (m)
+  bool joined = false;
+  Index slot = -1;            // of its impulse in the integrated state
+  double impulse = 0.0;       // N s, until the last commit
+  std::uint32_t version = 0;  // invalidates its pending join prediction
+  bool predicted = false;
+};
+
+// A join computed in closed form, between bodies in free flight.
+struct PredictedJoin {
+  double time;
+  Index contact;
+  std::uint32_t version;
+  bool operator>(const PredictedJoin& other) const { return time > other.time; }
+};
+
+// Gaps (m) and rates (m/s) of the watched contacts at one time.
 struct GapSamples {
   std::vector<double> gap, rate;
 };
 
-// y = (q, v, P): positions, velocities and the impulse of every contact.
+}  // namespace
+
 struct CompliantIntegrator::State {
   explicit State(const numerics::OdeOptions& options) : dense(options) {}
 
   numerics::internal::DenseOutput dense;
   numerics::internal::DenseOutput::State y, probe;
-  Index n = 0, m = 0;
   bool linear = true;
-  std::vector<Index> all;         // every interaction
-  Eigen::SparseMatrix<double> W;  // dof x contacts, constant when every relation is linear
-  VectorXd offset;                // g = W^T q + offset for linear relations
-  ContactDynamics dynamics;
-  VectorXd q, v, generalized, contact;  // right-hand side workspace
-  GapSamples before, after, end;        // the event search's, and the segment's end
-  // the round-off of each gap (m): a crossing within it is noise, not a contact event
-  std::vector<double> gap_noise;
-  std::vector<double> gap_probe, rate_probe;  // scratch of the root finder and the open test
+  double join_overlap = 0.0, leave_overlap = 0.0;  // m
+  std::vector<Body> bodies;
+  std::vector<Contact> contacts;
+  VectorXd anchor_q, anchor_v;  // global coordinates
+  std::vector<Index> body_of_coordinate, local_of_coordinate;
+  // the motion: its bodies, its joined contacts, the contacts watched for events
+  std::vector<Index> moving, joined, watched;
+  Index moving_coordinates = 0, most_moving = 0;
+  std::vector<std::uint32_t> watch_stamp;
+  std::uint32_t stamp = 0;
+  std::priority_queue<PredictedJoin, std::vector<PredictedJoin>, std::greater<>> predictions;
+  Index pending_predictions = 0;
+  // right-hand side workspace
+  VectorXd generalized;
+  VectorXd q_all, v_all;  // nonlinear relations: every coordinate
+  GapSamples before, after;
+  std::vector<double> event_gap, event_rate;
+  std::vector<double> gap_now;  // m, of the joined contacts at the end of the last segment
+
+  Body& body(Index k) { return bodies[std::size_t(k)]; }
+  Contact& contact(Index j) { return contacts[std::size_t(j)]; }
+
+  // displacement from the anchor and velocity of coordinate `local` of body k at time t, with
+  // the integrated state y
+  double displacement(const Body& b, Index local, double t, const double* state) const {
+    return b.in_motion ? state[b.slot + local] : anchor_v(b.offset + local) * (t - b.anchor_time);
+  }
+  double velocity(const Body& b, Index local, const double* state) const {
+    return b.in_motion ? state[moving_coordinates + b.slot + local] : anchor_v(b.offset + local);
+  }
 };
 
-// A contact event: which contact, what happens, when.
 struct CompliantIntegrator::Event {
   Index contact = -1;
   EventKind kind = EventKind::none;
@@ -59,16 +125,14 @@ CompliantIntegrator::CompliantIntegrator(CompliantOptions options) : options_(op
 
 CompliantIntegrator::~CompliantIntegrator() = default;
 
-void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, double start,
-                                     const kernel::EventProblems&) {
-  system_ = &system;
-  time_ = start;
-  state_ = std::make_unique<State>(options_.ode);
-  State& s = *state_;
-  s.n = system.dof();
-  s.m = system.interaction_count();
-  laws_.clear();
-  for (Index j = 0; j < s.m; ++j) {
+Index CompliantIntegrator::bodies_in_motion() const { return Index(state_->moving.size()); }
+Index CompliantIntegrator::most_bodies_in_motion() const { return state_->most_moving; }
+
+namespace {
+
+std::vector<numerics::ContactLaw> compliant_laws(const kernel::NonSmoothDynamicalSystem& system) {
+  std::vector<numerics::ContactLaw> laws;
+  for (Index j = 0; j < system.interaction_count(); ++j) {
     const auto* law = dynamic_cast<const LzbLaw*>(&system.interaction(j).law());
     if (!law)
       throw InvalidInput("interaction '" + system.interaction(j).name() + "' has a \"" +
@@ -80,35 +144,77 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
                          "': the compliant integrator follows the bi-stiffness unloading curve "
                          "(docs/model.md, section 3); a mono-stiffness law with e < 1 has no "
                          "time-domain form here");
-    laws_.push_back(contact);
-    s.linear = s.linear && system.interaction(j).relation().is_linear();
+    laws.push_back(contact);
   }
-  VectorXd q, v;
-  system.gather_state(q, v);
-  s.all.resize(std::size_t(s.m));
-  for (Index j = 0; j < s.m; ++j) s.all[std::size_t(j)] = j;
-  s.W = system.jacobian_matrix(s.all, q);
-  s.offset.resize(s.m);
-  for (Index j = 0; j < s.m; ++j) s.offset(j) = system.gap(j, q) - s.W.col(j).dot(q);
-  s.dynamics.initialize(system);
-  s.y.assign(std::size_t(2 * s.n + s.m), 0.0);
-  s.probe = s.y;
-  std::copy(q.data(), q.data() + s.n, s.y.begin());
-  std::copy(v.data(), v.data() + s.n, s.y.begin() + s.n);
-  s.gap_probe.resize(std::size_t(s.m));
-  s.rate_probe = s.gap_probe;
-  for (GapSamples* samples : {&s.before, &s.after, &s.end})
-    samples->gap = samples->rate = s.gap_probe;
-  // a contact that starts compressed (a static load) starts on its loading curve
-  max_compression_.assign(std::size_t(s.m), 0.0);
-  history_.force.setZero(s.m);
+  return laws;
+}
+
+}  // namespace
+
+void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, double start,
+                                     const kernel::EventProblems&) {
+  system_ = &system;
+  time_ = start;
+  laws_ = compliant_laws(system);
+  state_ = std::make_unique<State>(options_.ode);
+  State& s = *state_;
+  const Index m = system.interaction_count();
+  for (Index j = 0; j < m; ++j) s.linear = s.linear && system.interaction(j).relation().is_linear();
+  s.join_overlap = options_.overlap_resolution;
+  s.leave_overlap = 0.5 * s.join_overlap;
+  system.gather_state(s.anchor_q, s.anchor_v);
+  s.q_all = s.anchor_q;
+  s.v_all = s.anchor_v;
+
+  s.bodies.resize(std::size_t(system.system_count()));
+  s.body_of_coordinate.resize(std::size_t(system.dof()));
+  s.local_of_coordinate = s.body_of_coordinate;
+  for (Index k = 0; k < system.system_count(); ++k) {
+    const kernel::DynamicalSystem& ds = system.system(k);
+    Body& b = s.body(k);
+    b.offset = system.offset(k);
+    b.size = ds.dimension();
+    b.has_force = ds.has_force();
+    b.constant_mass = ds.mass_is_constant();
+    b.diagonal = ds.mass_is_diagonal();
+    b.can_fly = s.linear && !b.has_force && b.constant_mass;
+    b.mass.setZero(b.size, b.size);
+    b.q.setZero(b.size);
+    b.v = b.force = b.q;
+    b.anchor_time = start;
+    for (Index i = 0; i < b.size; ++i) {
+      s.body_of_coordinate[std::size_t(b.offset + i)] = k;
+      s.local_of_coordinate[std::size_t(b.offset + i)] = i;
+    }
+  }
+  s.contacts.resize(std::size_t(m));
+  s.watch_stamp.assign(std::size_t(m), 0);
+  s.gap_now.assign(std::size_t(m), 0.0);
+  max_compression_.assign(std::size_t(m), 0.0);
+  history_.force.setZero(m);
   history_.max_force = history_.time_of_max_force = history_.impulse = history_.force;
-  gaps(s.y.data(), s.y.data() + s.n, s.end.gap, s.end.rate);
-  for (Index j = 0; j < s.m; ++j) {
-    history_.force(j) = contact_force(std::size_t(j), -s.end.gap[std::size_t(j)]);
-    history_.max_force(j) = history_.force(j);
-    max_compression_[std::size_t(j)] = std::max(0.0, -s.end.gap[std::size_t(j)]);
+  for (Index j = 0; j < m; ++j) {
+    Contact& c = s.contact(j);
+    c.anchor_gap = system.gap(j, s.anchor_q);
+    if (s.linear)
+      system.for_each_jacobian_entry(j, s.anchor_q, [&](Index coordinate, double value) {
+        if (value != 0.0)
+          c.entries.push_back({s.body_of_coordinate[std::size_t(coordinate)],
+                               s.local_of_coordinate[std::size_t(coordinate)], value});
+      });
   }
+  // a contact that starts compressed (a static load) starts on its loading curve
+  for (Index j = 0; j < m; ++j)
+    if (-s.contact(j).anchor_gap > s.join_overlap) {
+      join(j);
+      max_compression_[std::size_t(j)] = -s.contact(j).anchor_gap;
+      history_.force(j) = history_.max_force(j) =
+          contact_force(std::size_t(j), -s.contact(j).anchor_gap);
+    }
+  for (Index k = 0; k < system.system_count(); ++k)
+    if (!s.body(k).can_fly) set_in_motion(k);
+  for (Index j = 0; j < m; ++j) predict_join(j);
+  restart();
   history_.all_open = contacts_open();
 }
 
@@ -125,59 +231,233 @@ double CompliantIntegrator::contact_force(std::size_t j, double delta) const {
          std::pow((delta - delta_r) / (delta_max - delta_r), law.exponent);
 }
 
-void CompliantIntegrator::gaps(const double* q, const double* v, std::vector<double>& gap,
-                               std::vector<double>& rate) const {
+// ---- who takes part ----------------------------------------------------------------------
+
+void CompliantIntegrator::commit_motion() {
   State& s = *state_;
-  const Eigen::Map<const VectorXd> qs(q, s.n), vs(v, s.n);
-  if (s.linear) {
-    for (Index j = 0; j < s.m; ++j) {
-      double g = s.offset(j), u = 0.0;
-      for (Eigen::SparseMatrix<double>::InnerIterator it(s.W, j); it; ++it) {
-        g += it.value() * qs(it.row());
-        u += it.value() * vs(it.row());
-      }
-      gap[std::size_t(j)] = g;
-      rate[std::size_t(j)] = u;
+  for (Index k : s.moving) {
+    Body& b = s.body(k);
+    for (Index i = 0; i < b.size; ++i) {
+      const double d = s.y[std::size_t(b.slot + i)];
+      s.anchor_q(b.offset + i) += d;
+      s.anchor_v(b.offset + i) = s.y[std::size_t(s.moving_coordinates + b.slot + i)];
+      if (!s.linear || d == 0.0) continue;
+      for (Index j : system_->interactions_of(k))
+        for (const JacobianEntry& entry : s.contact(j).entries)
+          if (entry.body == k && entry.local == i) s.contact(j).anchor_gap += entry.value * d;
     }
-    return;
+    b.anchor_time = time_;
   }
-  s.q = qs;
-  s.v = vs;
-  for (Index j = 0; j < s.m; ++j) {
-    gap[std::size_t(j)] = system_->gap(j, s.q);
-    rate[std::size_t(j)] = system_->velocity(j, s.q, s.v);
+  const std::size_t impulses = 2 * std::size_t(s.moving_coordinates);
+  for (Index j : s.joined) {
+    Contact& c = s.contact(j);
+    c.impulse += s.y[impulses + std::size_t(c.slot)];
+    history_.impulse(j) = c.impulse;
   }
 }
 
-void CompliantIntegrator::evaluate(double t, const double* y, double* dydt) {
+void CompliantIntegrator::set_in_motion(Index k) {
   State& s = *state_;
-  s.q = Eigen::Map<const VectorXd>(y, s.n);
-  s.v = Eigen::Map<const VectorXd>(y + s.n, s.n);
-  s.dynamics.evaluate(t, s.q, s.v, {});
-  if (!s.linear) s.W = system_->jacobian_matrix(s.all, s.q);  // W turns with q
-  s.contact.resize(s.m);
-  for (Index j = 0; j < s.m; ++j) {
-    double g;
-    if (s.linear) {
-      g = s.offset(j);
-      for (Eigen::SparseMatrix<double>::InnerIterator it(s.W, j); it; ++it)
-        g += it.value() * s.q(it.row());
-    } else {
-      g = system_->gap(j, s.q);
-    }
-    s.contact(j) = contact_force(std::size_t(j), -g);
+  Body& b = s.body(k);
+  if (b.in_motion) return;
+  // its free flight up to now, folded into the anchor
+  for (Index i = 0; i < b.size; ++i) {
+    const double d = s.anchor_v(b.offset + i) * (time_ - b.anchor_time);
+    s.anchor_q(b.offset + i) += d;
+    if (!s.linear || d == 0.0) continue;
+    for (Index j : system_->interactions_of(k))
+      for (const JacobianEntry& entry : s.contact(j).entries)
+        if (entry.body == k && entry.local == i) s.contact(j).anchor_gap += entry.value * d;
   }
-  s.generalized.noalias() = s.W * s.contact;
-  s.dynamics.apply_inverse_mass(s.generalized);
-  Eigen::Map<VectorXd>(dydt, s.n) = s.v;
-  Eigen::Map<VectorXd>(dydt + s.n, s.n) = s.dynamics.free_acceleration() + s.generalized;
-  Eigen::Map<VectorXd>(dydt + 2 * s.n, s.m) = s.contact;
+  b.anchor_time = time_;
+  b.in_motion = true;
+  s.moving.push_back(k);
+  for (Index j : system_->interactions_of(k)) forget_prediction(j);
+}
+
+void CompliantIntegrator::set_free(Index k) {
+  State& s = *state_;
+  Body& b = s.body(k);
+  if (!b.in_motion || !b.can_fly || b.loaded_contacts > 0) return;
+  b.in_motion = false;
+  std::erase(s.moving, k);
+  for (Index j : system_->interactions_of(k)) predict_join(j);
+}
+
+void CompliantIntegrator::join(Index j) {
+  State& s = *state_;
+  Contact& c = s.contact(j);
+  c.joined = true;
+  s.joined.push_back(j);
+  forget_prediction(j);
+  for (Index k : {system_->first_system(j), system_->second_system(j)})
+    if (k >= 0) {
+      ++s.body(k).loaded_contacts;
+      set_in_motion(k);
+    }
+}
+
+void CompliantIntegrator::leave(Index j) {
+  State& s = *state_;
+  s.contact(j).joined = false;
+  std::erase(s.joined, j);
+  max_compression_[std::size_t(j)] = 0.0;  // the contact forgets
+  history_.force(j) = 0.0;
+  for (Index k : {system_->first_system(j), system_->second_system(j)})
+    if (k >= 0) {
+      --s.body(k).loaded_contacts;
+      set_free(k);
+    }
+}
+
+// Between bodies in free flight the gap is linear in time: the join is where it reaches
+// -join_overlap.
+void CompliantIntegrator::predict_join(Index j) {
+  State& s = *state_;
+  Contact& c = s.contact(j);
+  if (!s.linear || c.joined || c.predicted) return;
+  double gap = c.anchor_gap, rate = 0.0;
+  for (const JacobianEntry& entry : c.entries) {
+    const Body& b = s.body(entry.body);
+    if (b.in_motion) return;  // watched along the integration instead
+    const double v = s.anchor_v(b.offset + entry.local);
+    gap += entry.value * v * (time_ - b.anchor_time);
+    rate += entry.value * v;
+  }
+  if (!(rate < 0.0)) return;
+  const double time = time_ + std::max(0.0, (gap + s.join_overlap) / -rate);
+  s.predictions.push({time, j, c.version});
+  c.predicted = true;
+  ++s.pending_predictions;
+}
+
+void CompliantIntegrator::forget_prediction(Index j) {
+  State& s = *state_;
+  Contact& c = s.contact(j);
+  ++c.version;
+  if (!c.predicted) return;
+  c.predicted = false;
+  --s.pending_predictions;
 }
 
 void CompliantIntegrator::restart() {
   State& s = *state_;
+  std::sort(s.moving.begin(), s.moving.end());
+  s.moving_coordinates = 0;
+  for (Index k : s.moving) {
+    s.body(k).slot = s.moving_coordinates;
+    s.moving_coordinates += s.body(k).size;
+  }
+  s.most_moving = std::max(s.most_moving, Index(s.moving.size()));
+  for (std::size_t a = 0; a < s.joined.size(); ++a) s.contact(s.joined[a]).slot = Index(a);
+  // y = (displacements, velocities, impulses since now)
+  s.y.assign(2 * std::size_t(s.moving_coordinates) + s.joined.size(), 0.0);
+  for (Index k : s.moving) {
+    const Body& b = s.body(k);
+    for (Index i = 0; i < b.size; ++i)
+      s.y[std::size_t(s.moving_coordinates + b.slot + i)] = s.anchor_v(b.offset + i);
+  }
+  // the contacts the integrated bodies touch
+  ++s.stamp;
+  s.watched.clear();
+  for (Index k : s.moving)
+    for (Index j : system_->interactions_of(k))
+      if (s.watch_stamp[std::size_t(j)] != s.stamp) {
+        s.watch_stamp[std::size_t(j)] = s.stamp;
+        s.watched.push_back(j);
+      }
+  for (GapSamples* samples : {&s.before, &s.after}) {
+    samples->gap.resize(s.watched.size());
+    samples->rate.resize(s.watched.size());
+  }
+  s.generalized.resize(s.moving_coordinates);
+  s.probe = s.y;
   // after an event, the step the integration last took
   s.dense.restart(s.y, time_, s.dense.last_step() > 0.0 ? s.dense.last_step() : 1e-7);
+}
+
+// ---- the motion ----------------------------------------------------------------------------
+
+namespace {
+
+// Gap and rate of contact j along the integrated state y at time t.
+template <class StateT>
+void linear_gap(const StateT& s, const Contact& c, double t, const double* y, double& gap,
+                double& rate) {
+  gap = c.anchor_gap;
+  rate = 0.0;
+  for (const JacobianEntry& entry : c.entries) {
+    const Body& b = s.bodies[std::size_t(entry.body)];
+    gap += entry.value * s.displacement(b, entry.local, t, y);
+    rate += entry.value * s.velocity(b, entry.local, y);
+  }
+}
+
+}  // namespace
+
+void CompliantIntegrator::evaluate(double t, const double* y, double* dydt) {
+  State& s = *state_;
+  const Index n = s.moving_coordinates;
+  s.generalized.setZero();
+  if (!s.linear) {  // every body moves: the whole configuration
+    for (Index k : s.moving) {
+      const Body& b = s.body(k);
+      for (Index i = 0; i < b.size; ++i) {
+        s.q_all(b.offset + i) = s.anchor_q(b.offset + i) + y[b.slot + i];
+        s.v_all(b.offset + i) = y[n + b.slot + i];
+      }
+    }
+  }
+  for (Index j : s.joined) {
+    const Contact& c = s.contact(j);
+    double gap, rate;
+    if (s.linear) {
+      linear_gap(s, c, t, y, gap, rate);
+    } else {
+      gap = system_->gap(j, s.q_all);
+    }
+    const double f = contact_force(std::size_t(j), -gap);
+    dydt[2 * n + c.slot] = f;
+    if (f == 0.0) continue;
+    if (s.linear) {
+      for (const JacobianEntry& entry : c.entries)
+        s.generalized(s.body(entry.body).slot + entry.local) += entry.value * f;
+    } else {
+      system_->for_each_jacobian_entry(j, s.q_all, [&](Index coordinate, double value) {
+        const Body& b = s.body(s.body_of_coordinate[std::size_t(coordinate)]);
+        s.generalized(b.slot + s.local_of_coordinate[std::size_t(coordinate)]) += value * f;
+      });
+    }
+  }
+  for (Index k : s.moving) {
+    Body& b = s.body(k);
+    b.q = s.anchor_q.segment(b.offset, b.size) + Eigen::Map<const VectorXd>(y + b.slot, b.size);
+    b.v = Eigen::Map<const VectorXd>(y + n + b.slot, b.size);
+    if (!b.constant_mass || !b.factorized) {
+      system_->system(k).mass(b.q, b.mass);
+      if (b.diagonal) {
+        b.inverse_diagonal = b.mass.diagonal().cwiseInverse();
+      } else {
+        b.cholesky.compute(b.mass);
+        if (b.cholesky.info() != Eigen::Success)
+          throw Error("system '" + system_->system(k).name() +
+                      "': M(q) stopped being positive definite during the motion");
+      }
+      b.factorized = true;
+    }
+    auto force = s.generalized.segment(b.slot, b.size);
+    if (b.has_force) {
+      system_->system(k).force(t, b.q, b.v, b.force);
+      force += b.force;
+    }
+    Eigen::Map<VectorXd> acceleration(dydt + n + b.slot, b.size);
+    if (b.diagonal) {
+      acceleration = b.inverse_diagonal.cwiseProduct(force);
+    } else {
+      acceleration = b.cholesky.solve(force);
+    }
+    Eigen::Map<VectorXd>(dydt + b.slot, b.size) = b.v;
+  }
 }
 
 kernel::StepReport CompliantIntegrator::advance(double target) {
@@ -185,8 +465,19 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
   kernel::StepReport report;
   report.time = time_;
   if (target <= time_) return report;
-  if (!s.dense.started()) restart();
+  bool reached = false;
   while (true) {
+    if (s.moving.empty()) {  // every body in free flight: up to the next computed join
+      Event event;
+      if (next_predicted_join(time_, target, event)) {
+        time_ = event.time;
+        if (handle_event(event, report)) break;
+        continue;
+      }
+      time_ = target;
+      reached = true;
+      break;
+    }
     if (s.dense.time() <= time_) {
       take_step();
       ++report.smooth_steps;
@@ -200,9 +491,12 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
       if (handle_event(event, report)) break;
       continue;
     }
-    if (time_ >= target) break;
+    if (time_ >= target) {
+      reached = true;
+      break;
+    }
   }
-  finish_advance();
+  finish_advance(reached);
   report.time = time_;
   return report;
 }
@@ -226,60 +520,93 @@ void CompliantIntegrator::take_step() {
 
 bool CompliantIntegrator::next_event(double a, double b, Event& event) {
   State& s = *state_;
-  estimate_gap_noise();
+  // gaps and rates of the watched contacts at time t of the current step
+  auto measure = [&](double t, std::span<const Index> contacts, std::vector<double>& gap,
+                     std::vector<double>& rate) {
+    s.dense.state_at(t, s.probe);
+    if (!s.linear) {
+      for (Index k : s.moving) {
+        const Body& body = s.body(k);
+        for (Index i = 0; i < body.size; ++i) {
+          s.q_all(body.offset + i) = s.anchor_q(body.offset + i) + s.probe[body.slot + i];
+          s.v_all(body.offset + i) = s.probe[s.moving_coordinates + body.slot + i];
+        }
+      }
+    }
+    for (std::size_t w = 0; w < contacts.size(); ++w) {
+      const Index j = contacts[w];
+      if (s.linear) {
+        linear_gap(s, s.contact(j), t, s.probe.data(), gap[w], rate[w]);
+      } else {
+        gap[w] = system_->gap(j, s.q_all);
+        rate[w] = system_->velocity(j, s.q_all, s.v_all);
+      }
+    }
+  };
   auto watch = [&](double t, GapSamples& samples) {
-    s.dense.state_at(t, s.probe);
-    gaps(s.probe.data(), s.probe.data() + s.n, samples.gap, samples.rate);
+    measure(t, s.watched, samples.gap, samples.rate);
   };
-  // the quantity whose sign change the event is: the gap closing (> 0 to <= 0), opening
-  // (the reverse), or a closed contact turning (u from < 0 to >= 0)
-  auto signed_value = [&](EventKind kind, std::size_t i, double t) {
-    s.dense.state_at(t, s.probe);
-    gaps(s.probe.data(), s.probe.data() + s.n, s.gap_probe, s.rate_probe);
-    return kind == EventKind::closing   ? s.gap_probe[i]
-           : kind == EventKind::opening ? -s.gap_probe[i]
-                                        : -s.rate_probe[i];
+  // the quantity whose crossing from > 0 to <= 0 is the event
+  auto signed_value = [&](EventKind kind, double gap, double rate) {
+    switch (kind) {
+      case EventKind::joining:
+        return gap + s.join_overlap;
+      case EventKind::leaving:
+        return -gap - s.leave_overlap;
+      default:  // turning
+        return -rate;
+    }
   };
+  s.event_gap.resize(1);
+  s.event_rate.resize(1);
   auto locate = [&](double t0, double t1, const GapSamples& before, const GapSamples& after,
                     std::vector<Crossing>& found) {
-    for (Index j = 0; j < s.m; ++j) {
-      const std::size_t i = std::size_t(j);
-      const double g0 = before.gap[i], g1 = after.gap[i];
-      // touching bodies at rest (behind a wave) see their gap flicker around 0 in round-off:
-      // such a crossing moves no force worth a restart
-      const bool gap_moved = std::max(std::abs(g0), std::abs(g1)) > s.gap_noise[i];
+    for (std::size_t w = 0; w < s.watched.size(); ++w) {
+      const Index j = s.watched[w];
+      const bool joined = s.contact(j).joined;
+      const double g0 = before.gap[w], g1 = after.gap[w];
       EventKind kind = EventKind::none;
-      if (gap_moved && g0 > 0.0 && g1 <= 0.0) {
-        kind = EventKind::closing;
-      } else if (gap_moved && g0 <= 0.0 && g1 > 0.0) {
-        kind = EventKind::opening;
-      } else if (g0 < -s.gap_noise[i] && before.rate[i] < 0.0 && after.rate[i] >= 0.0) {
+      if (!joined && g0 > -s.join_overlap && g1 <= -s.join_overlap) {
+        kind = EventKind::joining;
+      } else if (joined && g0 < -s.leave_overlap && g1 >= -s.leave_overlap) {
+        kind = EventKind::leaving;
+      } else if (joined && g0 < -s.leave_overlap && before.rate[w] < 0.0 && after.rate[w] >= 0.0) {
         kind = EventKind::turning;
       }
       if (kind == EventKind::none) continue;
-      const double f0 = kind == EventKind::closing   ? g0
-                        : kind == EventKind::opening ? -g0
-                                                     : -before.rate[i];
-      const double f1 = kind == EventKind::closing   ? g1
-                        : kind == EventKind::opening ? -g1
-                                                     : -after.rate[i];
-      const numerics::Bracket bracket =
-          numerics::narrow_crossing([&](double t) { return signed_value(kind, i, t); }, t0, t1, f0,
-                                    f1, options_.ode.event_tolerance);
+      const Index one[] = {j};
+      const numerics::Bracket bracket = numerics::narrow_crossing(
+          [&](double t) {
+            measure(t, one, s.event_gap, s.event_rate);
+            return signed_value(kind, s.event_gap[0], s.event_rate[0]);
+          },
+          t0, t1, signed_value(kind, g0, before.rate[w]), signed_value(kind, g1, after.rate[w]),
+          options_.ode.event_tolerance);
       // an event at the start of the segment is the one just handled, seen again through
       // round-off of the restarted state
       if (bracket.upper <= a + options_.ode.event_tolerance) continue;
-      found.push_back({j, int(kind), bracket.upper});
+      found.push_back({long(j), int(kind), bracket.upper});
     }
   };
   const std::vector<Crossing> found = numerics::internal::scan_events(
       a, b, options_.ode.samples_per_step, options_.ode.event_tolerance, s.before, s.after, watch,
       locate);
-  if (found.empty()) return false;
-  const Crossing& earliest =
-      *std::min_element(found.begin(), found.end(),
-                        [](const Crossing& x, const Crossing& y) { return x.time < y.time; });
-  event = {earliest.index, EventKind(earliest.kind), earliest.time};
+  double earliest = kNever;
+  for (const Crossing& crossing : found)
+    if (crossing.time < earliest) {
+      earliest = crossing.time;
+      event = {Index(crossing.index), EventKind(crossing.kind), crossing.time};
+    }
+  return next_predicted_join(a, std::min(b, earliest), event) || earliest != kNever;
+}
+
+bool CompliantIntegrator::next_predicted_join(double a, double b, Event& event) {
+  State& s = *state_;
+  while (!s.predictions.empty() &&
+         s.predictions.top().version != s.contact(s.predictions.top().contact).version)
+    s.predictions.pop();
+  if (s.predictions.empty() || s.predictions.top().time > b) return false;
+  event = {s.predictions.top().contact, EventKind::joining, std::max(a, s.predictions.top().time)};
   return true;
 }
 
@@ -287,62 +614,103 @@ void CompliantIntegrator::end_segment(double end) {
   State& s = *state_;
   s.dense.state_at(end, s.y);
   time_ = end;
-  gaps(s.y.data(), s.y.data() + s.n, s.end.gap, s.end.rate);
-  for (std::size_t j = 0; j < s.end.gap.size(); ++j) {
+  for (Index j : s.joined) {
     // a contact's force peaks where it turns, and a located turn ends a segment
-    const double f = contact_force(j, -s.end.gap[j]);
-    history_.force(Index(j)) = f;
-    if (f > history_.max_force(Index(j))) {
-      history_.max_force(Index(j)) = f;
-      history_.time_of_max_force(Index(j)) = time_;
+    double gap, rate;
+    if (s.linear) {
+      linear_gap(s, s.contact(j), time_, s.y.data(), gap, rate);
+    } else {
+      for (Index k : s.moving) {
+        const Body& body = s.body(k);
+        for (Index i = 0; i < body.size; ++i)
+          s.q_all(body.offset + i) = s.anchor_q(body.offset + i) + s.y[body.slot + i];
+      }
+      gap = system_->gap(j, s.q_all);
     }
-    // an opening inside the round-off band is not located; the contact forgets all the same
-    if (s.end.gap[j] > 0.0) max_compression_[j] = 0.0;
+    s.gap_now[std::size_t(j)] = gap;
+    const double f = contact_force(std::size_t(j), -gap);
+    history_.force(j) = f;
+    if (f > history_.max_force(j)) {
+      history_.max_force(j) = f;
+      history_.time_of_max_force(j) = time_;
+    }
   }
 }
 
 bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& report) {
   State& s = *state_;
   const std::size_t i = std::size_t(event.contact);
-  if (event.kind == EventKind::opening) max_compression_[i] = 0.0;  // the contact forgets
-  if (event.kind == EventKind::turning)
-    max_compression_[i] = std::max(max_compression_[i], -s.end.gap[i]);
+  if (event.kind == EventKind::turning) {
+    // e < 1 unloads along another curve from here; for e = 1 the restart keeps the step
+    // from stepping over the peak (the separation speed to 1e-9 at the default tolerances)
+    commit_motion();
+    max_compression_[i] = std::max(max_compression_[i], -s.gap_now[i]);
+    restart();
+    return false;
+  }
+  commit_motion();
+  if (event.kind == EventKind::joining) {
+    if (s.contact(event.contact).predicted) {  // the computed join is used up
+      s.predictions.pop();
+      forget_prediction(event.contact);
+    }
+    join(event.contact);
+  } else {
+    leave(event.contact);
+  }
   restart();
+  for (Index k : {system_->first_system(event.contact), system_->second_system(event.contact)})
+    if (k >= 0) write_back(k);
   report.time = time_;
-  report.event = event.kind != EventKind::turning;
-  (event.kind == EventKind::closing ? report.closing : report.detaching).push_back(event.contact);
-  // a turn only changes the contact's curve; closing and opening are the kernel's events
-  return event.kind != EventKind::turning;
+  report.event = true;
+  (event.kind == EventKind::joining ? report.closing : report.detaching).push_back(event.contact);
+  return true;
 }
 
-void CompliantIntegrator::finish_advance() {
+void CompliantIntegrator::write_back(Index k) {
   State& s = *state_;
-  VectorXd q = Eigen::Map<const VectorXd>(s.y.data(), s.n),
-           v = Eigen::Map<const VectorXd>(s.y.data() + s.n, s.n);
-  system_->scatter_state(q, v);
-  for (Index j = 0; j < s.m; ++j) history_.impulse(j) = s.y[std::size_t(2 * s.n + j)];
+  const Body& b = s.body(k);
+  b.q = s.anchor_q.segment(b.offset, b.size);
+  for (Index i = 0; i < b.size; ++i) {
+    b.q(i) += s.displacement(b, i, time_, s.y.data());
+    b.v(i) = s.velocity(b, i, s.y.data());
+  }
+  system_->system(k).set_state(b.q, b.v);
+}
+
+void CompliantIntegrator::finish_advance(bool reached_target) {
+  State& s = *state_;
+  const Index n = s.moving_coordinates;
+  if (reached_target) {
+    for (Index k = 0; k < Index(s.bodies.size()); ++k) write_back(k);
+  } else {
+    for (Index k : s.moving) write_back(k);
+  }
+  for (Index j : s.joined)
+    history_.impulse(j) = s.contact(j).impulse + s.y[std::size_t(2 * n + s.contact(j).slot)];
   history_.all_open = contacts_open();
 }
 
-void CompliantIntegrator::estimate_gap_noise() {
+bool CompliantIntegrator::contacts_open() {
   State& s = *state_;
-  s.gap_noise.assign(std::size_t(s.m), 0.0);
-  if (!s.linear) return;  // no estimate: every crossing is located
-  // g = W^T q + offset summed in floating point: a few ulps of its largest terms
-  const Eigen::Map<const VectorXd> q(s.y.data(), s.n);
-  for (Index j = 0; j < s.m; ++j) {
-    double scale = std::abs(s.offset(j));
-    for (Eigen::SparseMatrix<double>::InnerIterator it(s.W, j); it; ++it)
-      scale += std::abs(it.value() * q(it.row()));
-    s.gap_noise[std::size_t(j)] = 8.0 * std::numeric_limits<double>::epsilon() * scale;
+  if (!s.joined.empty() || s.pending_predictions > 0) return false;
+  // the integrated bodies' contacts: none touching, none approaching
+  if (s.watched.empty()) return true;
+  s.event_gap.resize(s.watched.size());
+  s.event_rate.resize(s.watched.size());
+  for (std::size_t w = 0; w < s.watched.size(); ++w) {
+    const Index j = s.watched[w];
+    double gap, rate;
+    if (s.linear) {
+      linear_gap(s, s.contact(j), time_, s.y.data(), gap, rate);
+    } else {
+      VectorXd q, v;
+      system_->gather_state(q, v);
+      gap = system_->gap(j, q);
+      rate = system_->velocity(j, q, v);
+    }
+    if (gap <= 0.0 || rate < 0.0) return false;
   }
-}
-
-bool CompliantIntegrator::contacts_open() const {
-  State& s = *state_;
-  gaps(s.y.data(), s.y.data() + s.n, s.gap_probe, s.rate_probe);
-  for (std::size_t j = 0; j < s.gap_probe.size(); ++j)
-    if (s.gap_probe[j] <= 0.0 || s.rate_probe[j] < 0.0) return false;
   return true;
 }
 

@@ -14,13 +14,6 @@
 namespace mimpact::testing {
 namespace {
 
-chains::ChainImpact run_adaptive(const chains::ChainModel& model, double tolerance) {
-  plugins::LzbImpactOptions options;
-  options.integrator = plugins::LzbIntegrator::adaptive;
-  options.adaptive.tolerance = tolerance;
-  return chains::simulate_chain_impact(model, options);
-}
-
 // Issue 10 (a): for e = 1 the continuous LZB impact is the Hertz chain; at tolerance 1e-10
 // the adaptive integrator is within 1e-8 of the tests' own integration in time.
 TEST(AdaptiveChains, ElasticChainsAreTheExactHertzChain) {

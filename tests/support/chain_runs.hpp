@@ -27,6 +27,14 @@ inline chains::ChainImpact run_chain(const chains::ChainModel& model, double del
 
 // Relative to the momentum the bodies carry, sum m |v|: the total is zero when strikers meet
 // from both sides.
+// The adaptive LZB integrator at `tolerance`, through the kernel.
+inline chains::ChainImpact run_adaptive(const chains::ChainModel& model, double tolerance) {
+  plugins::LzbImpactOptions options;
+  options.integrator = plugins::LzbIntegrator::adaptive;
+  options.adaptive.tolerance = tolerance;
+  return chains::simulate_chain_impact(model, options);
+}
+
 inline double relative_momentum_change(const chains::ChainModel& model,
                                        const chains::ChainImpact& impact) {
   const double before = chains::momentum(model, model.velocity);

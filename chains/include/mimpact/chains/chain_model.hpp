@@ -55,6 +55,11 @@ analysis::ImpactProblemData impact_problem(const ChainModel& model);
 // body, i.e. of a striker. delta_p is best chosen as a share of it.
 double natural_impulse(const ChainModel& model);
 
+// The overlap (m) that sets the contacts' scale: the largest compression of a lone contact
+// struck at the approach speed of a striker, ((1 + eta) m u^2 / (2 K))^(1 / (1 + eta)), the
+// smallest over the strikers; infinite when no contact approaches.
+double impact_overlap(const ChainModel& model);
+
 // Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
 // resolve the chain's impact: finite, below the natural impulse m V (a coarser step resolves
 // no approach, so the strikers would pass through the chain), and not so fine that the

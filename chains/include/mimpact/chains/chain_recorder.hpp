@@ -24,6 +24,8 @@ struct ChainTimeSeries {
 struct CompliantChainRun {
   ChainImpact impact;
   ChainTimeSeries series;
+  // the most bodies integrated at once: the others flew in closed form
+  Eigen::Index most_bodies_in_motion = 0;
 };
 
 // Samples the impulse steps of a chain's impacts (pass it as the impact observer, with the

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -22,11 +23,16 @@ struct CompliantOptions {
   // docs/performance.md takes 8.9e4, so 1e7 only stops runs whose scales double precision
   // cannot resolve.
   std::int64_t max_steps = 10'000'000;
+  // m: a contact joins the integration when its overlap exceeds this, and leaves it below half
+  // of it. Smaller overlaps carry forces of K resolution^eta and no more; 1e-6 of the
+  // impact's largest overlap is below 1e-9 of its peak force and 1e-15 of its energy.
+  double overlap_resolution = 1e-12;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
     numerics::OdeOptions::visit_fields(self.ode, field);
     field("max_steps", self.max_steps, at_least(1));
+    field("overlap_resolution", self.overlap_resolution, positive("m"));
   }
 };
 
@@ -34,13 +40,21 @@ struct CompliantOptions {
 // interaction with an LzbLaw is a contact of force F = K delta^eta while it loads
 // (delta = -g > 0 beyond its largest value so far, delta_M), and for e < 1 unloads and
 // reloads along F = F_M ((delta - delta_r) / (delta_M - delta_r))^eta, delta_r = delta_M (1 - e^2),
-// F_M = K delta_M^eta (docs/model.md, section 3); a contact that opens (delta <= 0) forgets its
-// history. For e = 1 this is exactly the Hertz contact, the reference LZB converges to.
+// F_M = K delta_M^eta (docs/model.md, section 3); a contact that opens forgets its history.
+// For e = 1 this is exactly the Hertz contact, the reference LZB converges to.
 // M q'' = F_ext + W f(delta) is integrated by Dormand-Prince 5(4) with dense output; the
-// times where a contact closes, opens or turns from loading to unloading are located (TOMS
-// 748) and the integration restarts there, so the kinks of f are never stepped over. With
-// linear relations the right-hand side works on W, constant and sparse, with no call per
-// contact. It solves no impact problem: every contact is compliant. Registered as "compliant".
+// times where a contact joins, leaves or turns from loading to unloading are located (TOMS
+// 748) and the integration restarts there, so the kinks of f are never stepped over.
+//
+// The work follows the contacts taking part (docs/model.md, section 11). With linear relations,
+// a body with no force and a constant mass that touches no loaded contact moves in closed
+// form, q + v t, and costs nothing; only the bodies of the loaded contacts are integrated, as
+// displacements from where the last event left them (so a gap is a difference of small
+// numbers however far the bodies lie from the origin). A contact joins the integration when its
+// overlap reaches overlap_resolution and leaves it when the overlap falls below half of that;
+// between two bodies in free flight its join time is computed, not searched. With a nonlinear
+// relation every body and contact is integrated. It solves no impact problem: every contact is
+// compliant. Registered as "compliant".
 class CompliantIntegrator : public kernel::OneStepIntegrator {
  public:
   using Options = CompliantOptions;
@@ -53,12 +67,17 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   Needs needs() const override { return {}; }
   void initialize(kernel::NonSmoothDynamicalSystem& system, double start,
                   const kernel::EventProblems& problems) override;
-  // Advances to `target`; reports an event (without impact) when a contact closes or opens.
+  // Advances to `target`; reports an event (without impact) when a contact joins (closing)
+  // or leaves (detaching). At such an event the integrated bodies are written back to the
+  // system; the bodies in free flight are written back when the advance reaches its target.
   kernel::StepReport advance(double target) override;
   double time() const override { return time_; }
   // Every contact's force now, its largest so far and when, its impulse; all_open when
   // every contact is open and no two bodies approach where a contact could close.
   const kernel::ContactForceHistory* contact_force_history() const override { return &history_; }
+  // Bodies integrated now, and the most integrated at once since initialize().
+  kernel::Index bodies_in_motion() const;
+  kernel::Index most_bodies_in_motion() const;
 
  private:
   struct State;
@@ -67,22 +86,31 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   void take_step();
   // the earliest contact event in [a, b] of the current step, if any
   bool next_event(double a, double b, Event& event);
-  // moves to `end` in the current step: every contact's force and the largest so far
+  // the earliest join computed between bodies in free flight in [a, b], if any
+  bool next_predicted_join(double a, double b, Event& event);
+  // moves to `end` in the current step: the joined contacts' forces and largest forces
   void end_segment(double end);
-  // updates the contact's history at its event; true when the event ends the advance
+  // applies the event; true when it ends the advance
   bool handle_event(const Event& event, kernel::StepReport& report);
-  void finish_advance();
+  void finish_advance(bool reached_target);
+  // the body's state now into the system
+  void write_back(kernel::Index body);
+
+  // who takes part: the integrated state folded into the bodies' anchors, bodies set in
+  // motion or in free flight, and the integration restarted on the new set
+  void commit_motion();
+  void set_in_motion(kernel::Index body);
+  void set_free(kernel::Index body);
+  void join(kernel::Index contact);
+  void leave(kernel::Index contact);
+  void predict_join(kernel::Index contact);
+  void forget_prediction(kernel::Index contact);
+  void restart();
 
   void evaluate(double t, const double* y, double* dydt);
-  // gaps (m) and normal velocities (m/s) of every contact at (q, v); works in state_'s buffers
-  void gaps(const double* q, const double* v, std::vector<double>& gap,
-            std::vector<double>& rate) const;
   double contact_force(std::size_t j, double delta) const;
-  void restart();
-  // the round-off of each gap at the start of a segment
-  void estimate_gap_noise();
   // every contact open, and none approaching
-  bool contacts_open() const;
+  bool contacts_open();
 
   CompliantOptions options_;
   kernel::NonSmoothDynamicalSystem* system_ = nullptr;

@@ -1,0 +1,102 @@
+// The work follows the wave (issue 10, item 3): on C1's beads, the adaptive LZB integrates only
+// the contacts in the impact and the compliant method only the bodies in contact, so ten times
+// the beads cost ten times the steps and no more per step; a looser tolerance never costs more.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "../support/chain_runs.hpp"
+#include "mimpact/chains/chain_recorder.hpp"
+
+namespace mimpact::testing {
+namespace {
+
+// C1's beads and striker, `beads` long.
+chains::ChainModel c1_beads(int beads) {
+  chains::ChainScene scene =
+      chains::load_chain_scene(std::string(MIMPACT_SOURCE_DIR) + "/examples/scenes/c1.json");
+  scene.chain.segments[0].count = beads;
+  return chains::build_chain_model(scene);
+}
+
+// The wave forms within 2e-4 s and crosses a bead in 3.2e-5 s: the compliant run ends after it
+// has left (behind it the beads come to rest touching, so the contacts never all open).
+chains::CompliantChainRun run_compliant(const chains::ChainModel& model, double tolerance) {
+  chains::CompliantSpec spec;
+  spec.tolerance = tolerance;
+  spec.end_time = 2e-4 + 3.2e-5 * double(model.body_count());
+  return chains::simulate_chain_compliant(model, spec, {});
+}
+
+TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
+  const chains::ChainModel short_chain = c1_beads(300), long_chain = c1_beads(3000);
+  const chains::CompliantChainRun compliant_short = run_compliant(short_chain, 1e-6);
+  const chains::CompliantChainRun compliant_long = run_compliant(long_chain, 1e-6);
+  const double compliant_ratio =
+      double(compliant_long.impact.lzb.steps) / double(compliant_short.impact.lzb.steps);
+  std::printf(
+      "compliant at 1e-6: %lld and %lld steps (x%.2f), at most %lld and %lld bodies "
+      "integrated at once\n",
+      (long long)compliant_short.impact.lzb.steps, (long long)compliant_long.impact.lzb.steps,
+      compliant_ratio, (long long)compliant_short.most_bodies_in_motion,
+      (long long)compliant_long.most_bodies_in_motion);
+  EXPECT_LE(compliant_ratio, 10.5);
+  // the wave is a few beads wide, whatever the chain's length
+  EXPECT_LE(compliant_long.most_bodies_in_motion, 12);
+  EXPECT_EQ(compliant_long.most_bodies_in_motion, compliant_short.most_bodies_in_motion);
+
+  const chains::ChainImpact adaptive_short = run_adaptive(short_chain, 1e-6);
+  const chains::ChainImpact adaptive_long = run_adaptive(long_chain, 1e-6);
+  const double adaptive_ratio = double(adaptive_long.lzb.steps) / double(adaptive_short.lzb.steps);
+  const double contacts_per_step =
+      double(adaptive_long.lzb.contact_steps) / double(adaptive_long.lzb.steps);
+  std::printf("adaptive at 1e-6: %lld and %lld steps (x%.2f), %.2f contacts per step\n",
+              (long long)adaptive_short.lzb.steps, (long long)adaptive_long.lzb.steps,
+              adaptive_ratio, contacts_per_step);
+  EXPECT_LE(adaptive_ratio, 10.5);
+  EXPECT_LE(contacts_per_step, 12.0);
+  // the two methods see the same wave leave the chain
+  const Eigen::Index last = long_chain.body_count() - 1;
+  EXPECT_NEAR(compliant_long.impact.velocity_after(last), adaptive_long.velocity_after(last),
+              2e-4 * long_chain.velocity(0));
+}
+
+// Bodies in free flight cost no step: a striker 1 m from the chain flies to it in closed form.
+TEST(WaveCost, FreeFlightCostsNoStep) {
+  chains::ChainScene scene =
+      chains::load_chain_scene(std::string(MIMPACT_SOURCE_DIR) + "/examples/scenes/c1.json");
+  const chains::ChainModel touching = chains::build_chain_model(scene);
+  scene.strikers[0].gap = 1.0;
+  const chains::ChainModel far = chains::build_chain_model(scene);
+  chains::CompliantSpec spec;
+  spec.tolerance = 1e-8;
+  spec.end_time = 1.0 + 2e-3;
+  const chains::CompliantChainRun flown = chains::simulate_chain_compliant(far, spec, {});
+  spec.end_time = 2e-3;
+  const chains::CompliantChainRun struck = chains::simulate_chain_compliant(touching, spec, {});
+  std::printf("striker 1 m away: %lld steps, touching: %lld steps; impact at t = %.12g s\n",
+              (long long)flown.impact.lzb.steps, (long long)struck.impact.lzb.steps,
+              flown.impact.impact_time);
+  EXPECT_EQ(flown.impact.lzb.steps, struck.impact.lzb.steps);
+  EXPECT_NEAR(flown.impact.impact_time, 1.0 / far.velocity(0), 1e-9);
+  EXPECT_LE(relative_difference(flown.impact.velocity_after, struck.impact.velocity_after), 1e-9);
+}
+
+TEST(WaveCost, ALooserToleranceNeverCostsMore) {
+  const chains::ChainModel model = c1_beads(300);
+  std::int64_t compliant_before = 0, adaptive_before = 0;
+  for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
+    const std::int64_t compliant = run_compliant(model, tolerance).impact.lzb.steps;
+    const std::int64_t adaptive = run_adaptive(model, tolerance).lzb.steps;
+    std::printf("tolerance %g: compliant %lld steps, adaptive %lld steps\n", tolerance,
+                (long long)compliant, (long long)adaptive);
+    EXPECT_GE(compliant, compliant_before) << tolerance;
+    EXPECT_GE(adaptive, adaptive_before) << tolerance;
+    compliant_before = compliant;
+    adaptive_before = adaptive;
+  }
+}
+
+}  // namespace
+}  // namespace mimpact::testing
