@@ -6,6 +6,7 @@
 
 #include "mimpact/chains/chain_impact.hpp"
 #include "mimpact/chains/chain_model.hpp"
+#include "mimpact/chains/chain_recorder.hpp"
 #include "mimpact/chains/chain_scene.hpp"
 
 namespace {
@@ -37,21 +38,53 @@ void BM_C1WholeImpact(benchmark::State& state) {
 }
 BENCHMARK(BM_C1WholeImpact)->Unit(benchmark::kMillisecond);
 
-// The same impact through the kernel, as `mimpact chain` runs it: the chain's system, the
-// event-driven integrator, the LZB impact problem, Delassus assembly, the simulation loop.
-void BM_C1ThroughKernel(benchmark::State& state) {
-  const chains::ChainModel model = chains::build_chain_model(
+chains::ChainModel c1_model() {
+  return chains::build_chain_model(
       chains::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
-  numerics::LzbOptions options;
-  options.delta_p = 1e-6;
+}
+
+// ||v+ - v+_Hertz||_inf / ||v+_Hertz||_inf: for e = 1 both LZB integrators converge to the
+// Hertz chain, here the compliant method at tolerance 1e-12 (an independent integration).
+double c1_velocity_error(const Eigen::VectorXd& velocity) {
+  static const Eigen::VectorXd exact = [] {
+    const chains::ChainModel model = c1_model();
+    chains::CompliantSpec spec;
+    spec.tolerance = 1e-12;
+    return chains::simulate_chain_compliant(model, spec, {}).impact.velocity_after;
+  }();
+  return (velocity - exact).cwiseAbs().maxCoeff() / exact.cwiseAbs().maxCoeff();
+}
+
+void c1_through_kernel(benchmark::State& state, const plugins::LzbImpactOptions& options) {
+  const chains::ChainModel model = c1_model();
   chains::ChainImpact impact;
   for (auto _ : state) {
     impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
   }
   state.counters["steps"] = double(impact.lzb.steps);
+  state.counters["velocity_error"] = c1_velocity_error(impact.velocity_after);
+}
+
+// The same impact through the kernel, as `mimpact chain` runs it: the chain's system, the
+// event-driven integrator, the LZB impact problem, Delassus assembly, the simulation loop.
+void BM_C1ThroughKernel(benchmark::State& state) {
+  plugins::LzbImpactOptions options;
+  options.impulse_steps.delta_p = 1e-6;
+  c1_through_kernel(state, options);
 }
 BENCHMARK(BM_C1ThroughKernel)->Unit(benchmark::kMillisecond);
+
+// C1 by the adaptive integrator of the continuous limit at tolerance 1e-6 (issue 10 c: an
+// error of 1e-6 at least 30 times faster than the impulse steps at delta_p = 1e-6, whose
+// error is 7.6e-5).
+void BM_C1Adaptive(benchmark::State& state) {
+  plugins::LzbImpactOptions options;
+  options.integrator = plugins::LzbIntegrator::adaptive;
+  options.adaptive.tolerance = 1e-6;
+  c1_through_kernel(state, options);
+}
+BENCHMARK(BM_C1Adaptive)->Unit(benchmark::kMillisecond);
 
 // A fixed budget of impulse steps on chains of 20, 1 000 and 100 000 beads (the 20-bead
 // impact ends before the budget). The work of a step follows the contacts in the wave, so
