@@ -86,6 +86,50 @@ void BM_C1Adaptive(benchmark::State& state) {
 }
 BENCHMARK(BM_C1Adaptive)->Unit(benchmark::kMillisecond);
 
+// The whole impact of C1-like chains of 1 000, 10 000 and 100 000 beads at tolerance 1e-6, by
+// the adaptive LZB integrator and by the compliant method (run until the wave has left: it
+// forms within 2e-4 s and crosses a bead in 3.2e-5 s). Their work follows the wave, so the
+// time grows as the length (issue 10 d: time(10 000) / time(1 000) <= 12).
+void BM_ChainLengthAdaptive(benchmark::State& state) {
+  const chains::ChainModel model = c1_like_chain(int(state.range(0)));
+  plugins::LzbImpactOptions options;
+  options.integrator = plugins::LzbIntegrator::adaptive;
+  options.adaptive.tolerance = 1e-6;
+  chains::ChainImpact impact;
+  for (auto _ : state) {
+    impact = chains::simulate_chain_impact(model, options);
+    benchmark::DoNotOptimize(impact.velocity_after.data());
+  }
+  state.counters["steps"] = double(impact.lzb.steps);
+  state.counters["contacts_per_step"] = double(impact.lzb.contact_steps) / double(impact.lzb.steps);
+  state.counters["last_velocity"] = impact.velocity_after(impact.velocity_after.size() - 1);
+}
+BENCHMARK(BM_ChainLengthAdaptive)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ChainLengthCompliant(benchmark::State& state) {
+  const chains::ChainModel model = c1_like_chain(int(state.range(0)));
+  chains::CompliantSpec spec;
+  spec.tolerance = 1e-6;
+  spec.end_time = 2e-4 + 3.2e-5 * double(state.range(0));
+  chains::CompliantChainRun run;
+  for (auto _ : state) {
+    run = chains::simulate_chain_compliant(model, spec, {});
+    benchmark::DoNotOptimize(run.impact.velocity_after.data());
+  }
+  state.counters["steps"] = double(run.impact.lzb.steps);
+  state.counters["most_bodies_in_motion"] = double(run.most_bodies_in_motion);
+  state.counters["last_velocity"] = run.impact.velocity_after(run.impact.velocity_after.size() - 1);
+}
+BENCHMARK(BM_ChainLengthCompliant)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond);
+
 // A fixed budget of impulse steps on chains of 20, 1 000 and 100 000 beads (the 20-bead
 // impact ends before the budget). The work of a step follows the contacts in the wave, so
 // the cost of a step must not grow with the chain.

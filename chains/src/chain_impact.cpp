@@ -318,6 +318,43 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
   return summary;
 }
 
+namespace {
+
+// Up to this many bodies the report lists every post-impact velocity; beyond, the first and
+// last few and the extremes (summary.json holds them all).
+constexpr Eigen::Index kListedBodies = 42;
+constexpr Eigen::Index kEndBodies = 7;
+
+std::string velocity_run(const Eigen::VectorXd& velocity, Eigen::Index from, Eigen::Index to) {
+  std::string text;
+  char value[32];
+  for (Eigen::Index i = from; i < to; ++i) {
+    std::snprintf(value, sizeof value, "%s%.5g", (i - from) % 7 == 0 ? "\n  " : " ", velocity(i));
+    text += value;
+  }
+  return text;
+}
+
+std::string velocity_lines(const Eigen::VectorXd& velocity) {
+  const Eigen::Index n = velocity.size();
+  if (n <= kListedBodies)
+    return "post-impact velocities (m/s, striker first):" + velocity_run(velocity, 0, n) + "\n";
+  Eigen::Index slowest, fastest;
+  velocity.minCoeff(&slowest);
+  velocity.maxCoeff(&fastest);
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "post-impact velocities (m/s) of %lld bodies, all in summary.json; extremes %.5g "
+                "(body %lld) and %.5g (body %lld)\n",
+                (long long)n, velocity(slowest), (long long)slowest, velocity(fastest),
+                (long long)fastest);
+  return line + std::string("first ") + std::to_string(kEndBodies) + ":" +
+         velocity_run(velocity, 0, kEndBodies) + "\nlast " + std::to_string(kEndBodies) + ":" +
+         velocity_run(velocity, n - kEndBodies, n) + "\n";
+}
+
+}  // namespace
+
 std::string chain_report(const ChainModel& model, const ChainImpact& impact,
                          const std::string& method) {
   const double energy_before = kinetic_energy(model, model.velocity);
@@ -338,12 +375,7 @@ std::string chain_report(const ChainModel& model, const ChainImpact& impact,
                 energy_before, energy_after, 100.0 * (energy_after / energy_before - 1.0),
                 momentum(model, model.velocity), momentum(model, impact.velocity_after));
   report += line;
-  report += "post-impact velocities (m/s, striker first):";
-  for (Eigen::Index i = 0; i < impact.velocity_after.size(); ++i) {
-    std::snprintf(line, sizeof line, "%s%.5g", i % 7 == 0 ? "\n  " : " ", impact.velocity_after(i));
-    report += line;
-  }
-  return report + "\n";
+  return report + velocity_lines(impact.velocity_after);
 }
 
 }  // namespace mimpact::chains

@@ -3,6 +3,7 @@
 // the beads cost ten times the steps and no more per step; a looser tolerance never costs more.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,23 @@ TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
   const Eigen::Index last = long_chain.body_count() - 1;
   EXPECT_NEAR(compliant_long.impact.velocity_after(last), adaptive_long.velocity_after(last),
               2e-4 * long_chain.velocity(0));
+}
+
+// Issue 10 (g): the report for people summarizes a long chain in a few lines: its ends, its
+// extremes and its energy, with every velocity left to summary.json.
+TEST(WaveCost, ALongChainsReportStaysShort) {
+  const chains::ChainModel model = c1_beads(3000);
+  const chains::ChainImpact impact = run_adaptive(model, 1e-6);
+  const std::string report = chains::chain_report(model, impact, "adaptive, tolerance 1e-06");
+  std::printf("%s", report.c_str());
+  EXPECT_LE(std::count(report.begin(), report.end(), '\n'), 10);
+  EXPECT_NE(report.find("kinetic energy"), std::string::npos);
+  Eigen::Index fastest;
+  impact.velocity_after.maxCoeff(&fastest);
+  EXPECT_NE(report.find("(body " + std::to_string(fastest) + ")"), std::string::npos) << report;
+  char last[32];
+  std::snprintf(last, sizeof last, "%.5g\n", impact.velocity_after(model.body_count() - 1));
+  EXPECT_NE(report.find(last), std::string::npos) << report;
 }
 
 // Bodies in free flight cost no step: a striker 1 m from the chain flies to it in closed form.

@@ -63,7 +63,8 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
                                      const ChainTimeSeries* series = nullptr);
 
 // A few lines for people: sizes, the method (`method`, one line: "delta_p = 1e-06 N s"),
-// steps, duration, energy and momentum, post-impact velocities.
+// steps, duration, energy and momentum, post-impact velocities (beyond 42 bodies, the first
+// and last seven and the extremes: a long chain's report stays a few lines).
 std::string chain_report(const ChainModel& model, const ChainImpact& impact,
                          const std::string& method);
 
