@@ -37,10 +37,12 @@ void print_forces(const char* when, const kernel::ContactForces& forces, double 
 
 }  // namespace
 
-int main() {
+int main(int argc, char* argv[]) try {
   const models::BeadColumn column;
   models::SimulationSetup setup;
-  setup.impacts.relative_delta_p = 1e-3;
+  plugins::LzbImpactOptions defaults;
+  defaults.relative_delta_p = 1e-3;
+  setup.impacts = models::impact_options_from_command_line(argc, argv, defaults);
   kernel::Simulation simulation = models::make_simulation(column.build(), setup);
   Column observer;
   simulation.add_observer(observer);
@@ -51,4 +53,7 @@ int main() {
   std::printf("%d impacts, %lld events, %lld smooth steps, %.3f s of computation\n",
               observer.impacts, (long long)summary.events, (long long)summary.smooth_steps,
               summary.wall_time);
+} catch (const std::exception& error) {
+  std::fprintf(stderr, "%s\n", error.what());
+  return 2;
 }

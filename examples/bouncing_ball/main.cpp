@@ -10,10 +10,12 @@
 
 using namespace mimpact;
 
-int main() {
+int main(int argc, char* argv[]) try {
   const models::BouncingBall ball;
   models::SimulationSetup setup;
-  setup.impacts.relative_delta_p = ball.relative_delta_p;
+  plugins::LzbImpactOptions defaults;
+  defaults.relative_delta_p = ball.relative_delta_p;
+  setup.impacts = models::impact_options_from_command_line(argc, argv, defaults);
   kernel::Simulation simulation = models::make_simulation(ball.build(), setup);
   models::BounceRecord bounces;
   simulation.add_observer(bounces);
@@ -38,4 +40,7 @@ int main() {
     std::printf("%zu impacts; not at rest by the end of the run\n", bounces.times.size());
   std::printf("%lld events, %lld smooth steps, %.3f s of computation\n", (long long)summary.events,
               (long long)summary.smooth_steps, summary.wall_time);
+} catch (const std::exception& error) {
+  std::fprintf(stderr, "%s\n", error.what());
+  return 2;
 }

@@ -34,10 +34,12 @@ class Impacts : public kernel::SimulationObserver {
 
 }  // namespace
 
-int main() {
+int main(int argc, char* argv[]) try {
   const models::NewtonsCradle cradle;
   models::SimulationSetup setup;
-  setup.impacts.relative_delta_p = 1e-4;
+  plugins::LzbImpactOptions defaults;
+  defaults.relative_delta_p = 1e-4;
+  setup.impacts = models::impact_options_from_command_line(argc, argv, defaults);
   kernel::Simulation simulation = models::make_simulation(cradle.build(), setup);
   Impacts impacts(cradle);
   simulation.add_observer(impacts);
@@ -46,4 +48,7 @@ int main() {
               (long long)summary.impacts, (long long)summary.events,
               (long long)summary.smooth_steps, summary.wall_time,
               cradle.energy(simulation.system()) / impacts.start_energy - 1.0);
+} catch (const std::exception& error) {
+  std::fprintf(stderr, "%s\n", error.what());
+  return 2;
 }

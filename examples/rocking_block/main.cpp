@@ -35,10 +35,12 @@ class Rocking : public kernel::SimulationObserver {
 
 }  // namespace
 
-int main() {
+int main(int argc, char* argv[]) try {
   const models::RockingBlock block;
   models::SimulationSetup setup;
-  setup.impacts.relative_delta_p = 1e-3;
+  plugins::LzbImpactOptions defaults;
+  defaults.relative_delta_p = 1e-3;
+  setup.impacts = models::impact_options_from_command_line(argc, argv, defaults);
   kernel::Simulation simulation = models::make_simulation(block.build(), setup);
   Rocking rocking(block);
   simulation.add_observer(rocking);
@@ -51,4 +53,7 @@ int main() {
   std::printf(" N (m g / 2 = %.6f N)\n", block.mass * block.gravity / 2);
   std::printf("%lld events, %lld smooth steps, %.3f s of computation\n", (long long)summary.events,
               (long long)summary.smooth_steps, summary.wall_time);
+} catch (const std::exception& error) {
+  std::fprintf(stderr, "%s\n", error.what());
+  return 2;
 }

@@ -26,7 +26,7 @@ void ContactDynamics::initialize(const kernel::NonSmoothDynamicalSystem& system)
     geometry_constant_ = geometry_constant_ && system.interaction(j).relation().is_linear();
   free_acceleration_.setZero(system.dof());
   set_.clear();
-  set_valid_ = factor_valid_ = false;
+  set_valid_ = factor_valid_ = inverse_mass_valid_ = pattern_analyzed_ = false;
 }
 
 void ContactDynamics::factorize_masses(const VectorXd& q) {
@@ -44,16 +44,13 @@ void ContactDynamics::factorize_masses(const VectorXd& q) {
                     "': M(q) stopped being positive definite during the motion");
     }
     block.factorized = true;
-    set_valid_ = set_valid_ && block.constant;  // M^-1 W_S depends on this mass
+    // M^-1 W_S depends on this mass
+    set_valid_ = set_valid_ && block.constant;
+    inverse_mass_valid_ = inverse_mass_valid_ && block.constant;
   }
 }
 
-void ContactDynamics::assemble_set(const VectorXd& q, std::span<const Index> set) {
-  const bool same_set = set_valid_ && std::equal(set.begin(), set.end(), set_.begin(), set_.end());
-  if (same_set && geometry_constant_) return;
-  set_.assign(set.begin(), set.end());
-  W_ = system_->jacobian_matrix(set, q);
-  // M^-1 as a sparse block-diagonal matrix, to form M^-1 W_S
+void ContactDynamics::assemble_inverse_mass() {
   std::vector<Eigen::Triplet<double>> entries;
   for (const MassBlock& block : blocks_) {
     if (block.diagonal) {
@@ -68,8 +65,29 @@ void ContactDynamics::assemble_set(const VectorXd& q, std::span<const Index> set
   }
   inverse_mass_.resize(system_->dof(), system_->dof());
   inverse_mass_.setFromTriplets(entries.begin(), entries.end());
+  inverse_mass_valid_ = true;
+}
+
+void ContactDynamics::assemble_set(const VectorXd& q, std::span<const Index> set) {
+  const bool same_set = set_valid_ && std::equal(set.begin(), set.end(), set_.begin(), set_.end());
+  if (same_set && geometry_constant_ && inverse_mass_valid_) return;
+  if (!inverse_mass_valid_) assemble_inverse_mass();
+  set_.assign(set.begin(), set.end());
+  W_ = system_->jacobian_matrix(set, q);
   mobility_ = inverse_mass_ * W_;
   H_ = W_.transpose() * mobility_;
+  // A new set, or one whose geometry moved: H keeps its sparsity pattern in the second case,
+  // and then only its numerical factorization is redone.
+  const bool same_pattern = pattern_analyzed_ &&
+                            std::equal(H_.outerIndexPtr(), H_.outerIndexPtr() + H_.outerSize() + 1,
+                                       analyzed_outer_.begin(), analyzed_outer_.end()) &&
+                            std::equal(H_.innerIndexPtr(), H_.innerIndexPtr() + H_.nonZeros(),
+                                       analyzed_inner_.begin(), analyzed_inner_.end());
+  if (!same_pattern) {
+    analyzed_outer_.assign(H_.outerIndexPtr(), H_.outerIndexPtr() + H_.outerSize() + 1);
+    analyzed_inner_.assign(H_.innerIndexPtr(), H_.innerIndexPtr() + H_.nonZeros());
+    pattern_analyzed_ = false;
+  }
   b_.resize(Index(set.size()));
   lambda_.resize(Index(set.size()));
   set_valid_ = true;
@@ -109,7 +127,9 @@ const VectorXd& ContactDynamics::bilateral_force() {
 
 const VectorXd& ContactDynamics::solve(const VectorXd& rhs) {
   if (!factor_valid_) {
-    ldlt_.compute(H_);
+    if (!pattern_analyzed_) ldlt_.analyzePattern(H_);
+    pattern_analyzed_ = true;
+    ldlt_.factorize(H_);
     if (ldlt_.info() != Eigen::Success)
       throw Error(
           "the persistent contacts are redundant (H is singular); the bilateral "
@@ -124,10 +144,6 @@ void ContactDynamics::acceleration(const VectorXd& lambda, VectorXd& out) const 
   out = free_acceleration_;
   if (lambda.size()) out.noalias() += mobility_ * lambda;
 }
-
-}  // namespace mimpact::plugins
-
-namespace mimpact::plugins {
 
 void ContactDynamics::apply_inverse_mass(VectorXd& x) const {
   for (const MassBlock& block : blocks_) {

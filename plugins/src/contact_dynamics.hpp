@@ -40,6 +40,7 @@ class ContactDynamics {
 
  private:
   void factorize_masses(const VectorXd& q);
+  void assemble_inverse_mass();
   void assemble_set(const VectorXd& q, std::span<const Index> set);
 
   const kernel::NonSmoothDynamicalSystem* system_ = nullptr;
@@ -55,7 +56,10 @@ class ContactDynamics {
   bool geometry_constant_ = true;  // every relation linear
   VectorXd free_acceleration_, b_, lambda_;
   std::vector<Index> set_;  // the set H was assembled for
-  bool set_valid_ = false, factor_valid_ = false;
+  bool set_valid_ = false, factor_valid_ = false, inverse_mass_valid_ = false;
+  // The sparsity pattern of H that ldlt_ was analyzed (ordered) for.
+  bool pattern_analyzed_ = false;
+  std::vector<int> analyzed_outer_, analyzed_inner_;
   Eigen::SparseMatrix<double> W_, inverse_mass_, mobility_, H_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
 };

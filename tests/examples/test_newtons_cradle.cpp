@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "mimpact/chains/hertz.hpp"
 #include "mimpact/models/newtons_cradle.hpp"
@@ -95,6 +96,52 @@ TEST(NewtonsCradle, ElasticCradleKeepsItsEnergy) {
   EXPECT_LE(errors[2], 1e-7);
   EXPECT_GT(errors[0] / errors[1], 30.0);
   EXPECT_GT(errors[1] / errors[2], 30.0);
+}
+
+// Sums the LZB steps of every impact of a run.
+struct ImpactSteps : kernel::SimulationObserver {
+  void on_impact(const kernel::Simulation&, const kernel::ImpactReport& report) override {
+    steps += report.steps;
+    ++impacts;
+  }
+  std::int64_t steps = 0, impacts = 0;
+};
+
+// Issue 10 e: each impact integrated by the adaptive LZB at tolerance 1e-10 instead of the
+// impulse steps. The energy after a second of swinging is kept to 1e-9 (the smooth motion's
+// own error is 5e-10), with over ten times fewer LZB steps than the impulse steps at relative
+// delta_p 1e-4, and both give the same swing: the balls' speeds after the second agree to the
+// impulse steps' first-order error.
+TEST(NewtonsCradle, AdaptiveImpactsKeepTheEnergyTo1e9) {
+  const NewtonsCradle cradle;
+  auto swing = [&](const plugins::LzbImpactOptions& impacts, ImpactSteps& counted) {
+    auto system = cradle.build();
+    const double start = cradle.energy(*system);
+    kernel::Simulation simulation = make_simulation(system, {.impacts = impacts});
+    simulation.add_observer(counted);
+    simulation.run(0.0, 1.0);
+    Eigen::VectorXd speeds(cradle.pendulums);
+    for (int k = 0; k < cradle.pendulums; ++k)
+      speeds(k) = cradle.length * system->system(k).velocity()(0);
+    return std::pair{std::abs(cradle.energy(*system) / start - 1.0), speeds};
+  };
+  plugins::LzbImpactOptions adaptive, impulse_steps;
+  adaptive.integrator = plugins::LzbIntegrator::adaptive;
+  adaptive.adaptive.tolerance = 1e-10;
+  impulse_steps.relative_delta_p = 1e-4;
+  ImpactSteps adaptive_steps, impulse_step_steps;
+  const auto [adaptive_error, adaptive_speeds] = swing(adaptive, adaptive_steps);
+  const auto [impulse_error, impulse_speeds] = swing(impulse_steps, impulse_step_steps);
+  std::printf("energy error after 1 s: adaptive %.3g (%lld LZB steps), impulse steps %.3g (%lld)\n",
+              adaptive_error, (long long)adaptive_steps.steps, impulse_error,
+              (long long)impulse_step_steps.steps);
+  EXPECT_LE(adaptive_error, 1e-9);
+  EXPECT_EQ(adaptive_steps.impacts, impulse_step_steps.impacts);
+  EXPECT_LE(10 * adaptive_steps.steps, impulse_step_steps.steps);
+  const double scale = adaptive_speeds.cwiseAbs().maxCoeff();
+  std::printf("largest speed difference %.3g of %.3g m/s\n",
+              (adaptive_speeds - impulse_speeds).cwiseAbs().maxCoeff(), scale);
+  EXPECT_LE((adaptive_speeds - impulse_speeds).cwiseAbs().maxCoeff(), 3e-4 * scale);
 }
 
 }  // namespace
