@@ -132,31 +132,45 @@ int chain_command(const std::vector<std::string>& arguments) {
                         "write summary.json into this directory instead of stdout")(
       "delta-p", po::value<double>(), "principal impulse step (N s); overrides impact.delta_p")(
       "tolerance", po::value(&tolerance)->multitoken(),
-      "eps+ [eps]: choose delta_p by halving it from --delta-p (or the scene's, or 1e-3 of the "
-      "striker's m V) until the post-impact velocities (and the velocities along the impact) "
-      "change by at most eps+ (eps) relative; see `mimpact converge`")(
+      "eps+ [eps]: meet this accuracy: with the adaptive integrator (a scene with \"integrator\": "
+      "\"adaptive\", or neither delta_p nor an integrator), divide its tolerance by 10 until the "
+      "post-impact velocities (and the peak forces) change by at most eps+ (eps) relative; with "
+      "the impulse steps, halve delta_p from --delta-p (or the scene's, or 1e-3 of the striker's "
+      "m V) until the velocities (and those along the impact) do; see `mimpact converge`")(
       "quiet", "no progress or report on stderr");
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
 
-  const chains::ChainScene scene = chains::load_chain_scene(scene_file);
+  chains::ChainScene scene = chains::load_chain_scene(scene_file);
   const chains::ChainModel model = chains::build_chain_model(scene);
   if (values.count("delta-p")) delta_p_option = values["delta-p"].as<double>();
   std::optional<double> delta_p = delta_p_option ? delta_p_option : scene.delta_p;
   std::optional<analysis::ConvergenceStudy> study;
+  std::optional<analysis::ToleranceStudy> tolerance_study;
   const bool lzb = scene.method == chains::Method::lzb;
   if (!lzb && delta_p_option)
     throw InvalidInput("--delta-p is the step of the LZB method; " + scene_file +
                        " has method \"compliant\"");
-  if (scene.adaptive() && (delta_p_option || !tolerance.empty()))
-    throw InvalidInput(std::string(delta_p_option ? "--delta-p" : "--tolerance") +
-                       " chooses the step of the impulse-step integrator; " + scene_file +
+  if (scene.adaptive() && delta_p_option)
+    throw InvalidInput("--delta-p chooses the step of the impulse-step integrator; " + scene_file +
                        " has \"integrator\": \"adaptive\", whose accuracy is impact.tolerance");
-  if (!tolerance.empty()) {
+  if (!tolerance.empty() && !delta_p_option && uses_tolerance_study(scene)) {
+    tolerance_study =
+        analysis::study_tolerance(chains::impact_problem(model),
+                                  tolerance_study_options(scene, std::nullopt, "", tolerance, 8));
+    if (!tolerance_study->converged)
+      throw Error(scene_file + ": no tolerance down to " +
+                  to_text(tolerance_study->finest_tolerance) +
+                  " met --tolerance; loosen it; no output written");
+    scene.impact["integrator"] = "adaptive";
+    scene.impact["tolerance"] = tolerance_study->finest_tolerance;
+  } else if (!tolerance.empty()) {
     study = analysis::study_convergence(
         chains::impact_problem(model),
         convergence_options(scene, model, delta_p_option, "--delta-p", tolerance, 12));
+    if (!study->converged && !study->stopped.empty())
+      throw Error(scene_file + ": --tolerance not met: " + study->stopped + "; no output written");
     if (!study->converged)
       throw Error(scene_file + ": no delta_p down to " + to_text(study->rows.back().delta_p) +
                   " N s met --tolerance; loosen it or start smaller; no output written");
@@ -190,6 +204,7 @@ int chain_command(const std::vector<std::string>& arguments) {
     summary["tolerance"] = scene.impact_options().adaptive.tolerance;
   }
   if (study) summary["convergence"] = convergence_json(*study);
+  if (tolerance_study) summary["convergence"] = tolerance_json(*tolerance_study);
 
   if (!quiet)
     std::cerr << scene_file << ": "

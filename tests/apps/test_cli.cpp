@@ -1,6 +1,8 @@
 // The command line contract: `mimpact chain`, `converge` and `lcp` outputs, errors and exit codes.
 #include <gtest/gtest.h>
+
 #include <sys/wait.h>
+#include <cmath>
 
 #include <algorithm>
 #include <array>
@@ -254,17 +256,26 @@ TEST(ChainCommand, DeltaPMustResolveTheImpactInMaxSteps) {
 }
 
 // c1.json under the compliant method, cut at `end_time` (s) when given
-fs::path compliant_c1(const std::string& tag, const std::string& end_time) {
+// C1's scene text, and a variant of it written to a temporary file named by `tag`.
+std::string c1_text() {
   std::ifstream in(scene("c1.json"));
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  const std::string compliant =
-      "\"method\": \"compliant\", " +
-      (end_time.empty() ? "" : "\"compliant\": {\"end_time\": " + end_time + "}, ");
-  text.replace(text.find("\"impact\""), 0, compliant);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+fs::path write_scene(const std::string& tag, const std::string& text) {
   const fs::path file =
       fs::temp_directory_path() / ("mimpact_" + tag + "_" + std::to_string(::getpid()) + ".json");
   std::ofstream(file) << text;
   return file;
+}
+
+fs::path compliant_c1(const std::string& tag, const std::string& end_time) {
+  std::string text = c1_text();
+  const std::string compliant =
+      "\"method\": \"compliant\", " +
+      (end_time.empty() ? "" : "\"compliant\": {\"end_time\": " + end_time + "}, ");
+  text.replace(text.find("\"impact\""), 0, compliant);
+  return write_scene(tag, text);
 }
 
 // delta_p and the convergence study belong to the LZB method: asked of a compliant scene,
@@ -365,6 +376,54 @@ TEST(ChainCommand, ToleranceChoosesDeltaP) {
   EXPECT_LE(rows[2]["eta_plus"].get<double>(), 1e-3);
   EXPECT_GT(rows[1]["eta_plus"].get<double>(), 1e-3);
   EXPECT_NEAR(summary["impulse_steps"].get<double>(), rows[2]["impulse_steps"].get<double>(), 2.0);
+}
+
+// C1 with "impact": {} (neither delta_p nor an integrator) is a scene for the adaptive
+// integrator: a tolerance tightened tenfold from the one asked until v+ changes by at most it.
+fs::path open_c1(const std::string& tag, const std::string& impact) {
+  std::string text = c1_text();
+  const std::size_t at = text.find("{\"delta_p\"");
+  text.replace(at, text.find('}', at) + 1 - at, impact);
+  return write_scene(tag, text);
+}
+
+TEST(ChainCommand, ToleranceMeetsTheAccuracyWithTheAdaptiveIntegrator) {
+  const fs::path file = open_c1("open", "{}");
+  const CliRun run = mimpact("chain " + file.string() + " --tolerance 1e-6 --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto summary = nlohmann::json::parse(run.out);
+  EXPECT_EQ(summary["integrator"], "adaptive");
+  EXPECT_DOUBLE_EQ(summary["tolerance"].get<double>(), 1e-7);
+  const auto& rows = summary["convergence"]["rows"];
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(rows[0]["tolerance"].get<double>(), 1e-6);
+  EXPECT_LE(rows[0]["eta_plus"].get<double>(), 1e-6);
+  EXPECT_TRUE(summary["convergence"]["converged"].get<bool>());
+  // the chain is the study's finest run
+  const auto& finest = summary["convergence"]["finest_velocities"];
+  const auto& velocities = summary["post_impact_velocities"];
+  ASSERT_EQ(finest.size(), velocities.size());
+  for (std::size_t i = 0; i < finest.size(); ++i)
+    EXPECT_NEAR(velocities[i].get<double>(), finest[i].get<double>(), 1e-12) << i;
+  fs::remove(file);
+}
+
+TEST(ConvergeCommand, AnAdaptiveSceneTightensItsTolerance) {
+  const fs::path file = open_c1("adaptive", R"({"integrator": "adaptive", "tolerance": 1e-3})");
+  const CliRun run = mimpact("converge " + file.string() + " --tolerance 1e-5 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto study = nlohmann::json::parse(run.out);
+  const auto& rows = study["rows"];
+  ASSERT_GE(rows.size(), 2u);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_DOUBLE_EQ(rows[k]["tolerance"].get<double>(), 1e-3 / std::pow(10.0, double(k)));
+    EXPECT_EQ(rows[k]["converged"].get<bool>(), k + 1 == rows.size());
+  }
+  EXPECT_TRUE(study["converged"].get<bool>());
+  const CliRun unmeetable = mimpact("converge " + file.string() + " --from 1e-14");
+  EXPECT_EQ(unmeetable.exit_code, 1);
+  EXPECT_NE(unmeetable.err.find("--from = 1e-14 is invalid"), std::string::npos) << unmeetable.err;
+  fs::remove(file);
 }
 
 // A delta_p past 1 % of the striker's momentum gives errors of percents: the run says so.

@@ -9,6 +9,7 @@
 
 #include "../support/chain_runs.hpp"
 #include "mimpact/analysis/lzb_convergence.hpp"
+#include "mimpact/analysis/lzb_tolerance_study.hpp"
 #include "mimpact/chains/chain_recorder.hpp"
 #include "mimpact/common/error.hpp"
 
@@ -125,6 +126,50 @@ TEST(Study, C1HalvesUntilConvergedAndExtrapolatesToTheHertzChain) {
   std::printf("against the Hertz chain: extrapolated %.3g, finest run (delta_p = %g) %.3g\n",
               extrapolated, study.rows.back().delta_p / 2, finest);
   EXPECT_LT(extrapolated, 0.01 * finest);
+}
+
+// The adaptive integrator's tolerance study on C1 from 1e-3: its error is proportional to the
+// tolerance, so eta+ falls tenfold a row, and the study stops at the first tolerance whose
+// tenth changes v+ by at most 1e-6; that tenth's run is within 1e-6 of the Hertz chain.
+TEST(ToleranceStudy, C1TightensTenfoldUntilConvergedAndMeetsTheHertzChain) {
+  chains::ChainScene scene = scene_file("c1.json");
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  analysis::ToleranceStudyOptions options;
+  options.first_tolerance = 1e-3;
+  options.epsilon_plus = options.epsilon = 1e-6;
+  const analysis::ToleranceStudy study =
+      analysis::study_tolerance(chains::impact_problem(model), options);
+  ASSERT_TRUE(study.converged);
+  for (std::size_t k = 0; k + 1 < study.rows.size(); ++k) {
+    std::printf("tolerance %g: eta+ %.3g, peak forces %.3g, %lld steps\n", study.rows[k].tolerance,
+                study.rows[k].eta_plus, study.rows[k].peak_force_change,
+                (long long)study.rows[k].steps);
+    EXPECT_FALSE(study.rows[k].converged);
+    const double ratio = study.rows[k].eta_plus / study.rows[k + 1].eta_plus;
+    EXPECT_GT(ratio, 3.0);
+    EXPECT_LT(ratio, 30.0);
+    EXPECT_LT(study.rows[k].steps, study.rows[k + 1].steps);
+  }
+  EXPECT_LE(study.rows.back().eta_plus, 1e-6);
+  scene.compliant.tolerance = 1e-12;
+  const Eigen::VectorXd exact =
+      chains::simulate_chain_compliant(model, scene.compliant, scene.record).impact.velocity_after;
+  const double error = relative_difference(study.finest_velocities, exact);
+  std::printf("tolerance %g: %.3g from the Hertz chain\n", study.finest_tolerance, error);
+  EXPECT_LE(error, 1e-6);
+}
+
+TEST(ToleranceStudy, ATolerancePastDoublePrecisionIsRefused) {
+  const chains::ChainScene scene = scene_file("c1.json");
+  const auto problem = chains::impact_problem(chains::build_chain_model(scene));
+  analysis::ToleranceStudyOptions options;
+  options.first_tolerance = 1e-14;
+  try {
+    analysis::study_tolerance(problem, options);
+    ADD_FAILURE() << "a first tolerance of 1e-14 was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("first_tolerance = 1e-14"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Study, BadOptionsAreNamed) {

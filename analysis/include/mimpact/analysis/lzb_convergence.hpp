@@ -4,6 +4,7 @@
 #include <Eigen/SparseCore>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "mimpact/numerics/contact_law.hpp"
@@ -38,7 +39,14 @@ struct ConvergenceStudy {
   Eigen::VectorXd extrapolated_velocities;  // Richardson, 2 v+_(h/2) - v+_h, of the last pair
   Eigen::VectorXd finest_velocities;        // v+ of the finest run
   bool converged = false;
+  // Why the study ended before max_halvings without converging ("" otherwise): the next run
+  // would store more samples than kSampleBudgetBytes.
+  std::string stopped;
 };
+
+// The comparison along the impact keeps every step of a run (P and v): a study stops before a
+// halving whose run would store more than this.
+constexpr double kSampleBudgetBytes = 4e9;
 
 // What a study runs and when it stops.
 struct ConvergenceOptions {
