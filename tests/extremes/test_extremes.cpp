@@ -1,4 +1,4 @@
-// The LZB impulse-step integrator at the extremes of its parameters: restitution 0 to 1,
+// Both LZB integrators at the extremes of their parameters: restitution 0 to 1,
 // elasticity exponents 1 to 2.5, stiffness and mass ratios of 1e6 and 1e4, delta_p from 1e-3
 // to 1e-9 of the natural impulse, striker speeds from 1e-4 to 10 m/s, chains of 2 to 100 000
 // beads, strikes at both ends, a grazing contact. Every run must end, stay finite, conserve
@@ -8,6 +8,9 @@
 // since every step but the last of a primary's phase moves the primary by delta_p, and each
 // of the m contacts ends a phase as primary at most twice (compression, then expansion)
 // per compression it goes through; the bound is checked where each contact is compressed once.
+// The adaptive integrator runs over the same grid and tolerances 1e-3 to 1e-12: it must end,
+// stay finite, conserve momentum to round-off and never gain energy beyond its tolerance; a
+// tolerance double precision cannot meet is refused.
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
@@ -18,6 +21,7 @@
 #include <vector>
 
 #include "mimpact/common/error.hpp"
+#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::numerics {
@@ -112,19 +116,44 @@ struct Outcome {
   VectorXd velocity;  // of the bodies, after
 };
 
-// Runs the impact at delta_p = share x natural impulse and asserts what every extreme must
-// keep. `watch_energy` samples the whole energy at every step (small lines only);
-// `one_compression` checks the step bound (each contact compressed once).
-Outcome expect_sound(const Line& line, double share, const std::string& what,
-                     bool watch_energy = true, bool one_compression = false) {
+// How an impact is integrated: impulse steps of delta_p = share x natural impulse, or the
+// adaptive integrator at `tolerance` when it is > 0. Either bounds the relative energy gain.
+struct Integration {
+  double share = 0.0;
+  double tolerance = 0.0;
+  bool adaptive() const { return tolerance > 0.0; }
+  // The adaptive tolerance bounds each step's error, a share of it; the steps' errors add up to
+  // about the tolerance in the velocities (measured up to 1.8 times it), and in the energy
+  // (measured up to 1.3 times it, a lone elastic contact at 1e-9): allowed twice it.
+  double energy_allowance() const { return adaptive() ? 2.0 * tolerance : share; }
+};
+
+Integration adaptive(double tolerance) { return {.tolerance = tolerance}; }
+
+LzbResult integrate(const Line& line, const Integration& how, ImpactObserver* observer,
+                    double sample_interval) {
+  if (how.adaptive()) {
+    LzbAdaptiveIntegrator integrator(
+        {.tolerance = how.tolerance, .sample_interval = observer ? sample_interval : 0.0});
+    return integrator.integrate(line.H(), line.u_minus(), line.laws, observer);
+  }
   LzbOptions options;
-  options.delta_p = share * line.natural_impulse();
-  options.sample_every = watch_energy ? 1 : 0;
+  options.delta_p = how.share * line.natural_impulse();
+  options.sample_every = observer ? 1 : 0;
+  return LzbImpulseIntegrator(options).integrate(line.H(), line.u_minus(), line.laws, observer);
+}
+
+// Runs the impact and asserts what every extreme must keep. `watch_energy` samples the whole
+// energy along the impact (small lines only: every step, or 400 times for the adaptive
+// integrator); `one_compression` checks the impulse steps' bound (each contact compressed once).
+Outcome expect_sound(const Line& line, const Integration& how, const std::string& what,
+                     bool watch_energy = true, bool one_compression = false) {
   EnergyWatch watch(line);
-  LzbImpulseIntegrator integrator(options);
   Outcome out;
-  out.result =
-      integrator.integrate(line.H(), line.u_minus(), line.laws, watch_energy ? &watch : nullptr);
+  // the adaptive integrator samples in time: over the duration a first run finds
+  const double duration =
+      watch_energy && how.adaptive() ? integrate(line, how, nullptr, 0.0).duration : 0.0;
+  out.result = integrate(line, how, watch_energy ? &watch : nullptr, duration / 400.0);
   const LzbResult& r = out.result;
   EXPECT_EQ(r.status, LzbStatus::terminated) << what << ": " << r.message;
   EXPECT_TRUE(r.impulse.allFinite() && r.velocity.allFinite() && r.max_force.allFinite() &&
@@ -140,22 +169,31 @@ Outcome expect_sound(const Line& line, double share, const std::string& what,
                after = line.kinetic_energy(out.velocity);
   const bool elastic = std::all_of(line.laws.begin(), line.laws.end(),
                                    [](const ContactLaw& l) { return l.restitution == 1.0; });
-  // O(delta_p): the relative energy gain is at most the step's share of the natural impulse
-  EXPECT_LE(after, before * (1.0 + share)) << what;
+  // the relative energy gain is at most the step's share of the natural impulse, O(delta_p),
+  // or the adaptive integrator's tolerance
+  const double allowance = how.energy_allowance();
+  EXPECT_LE(after, before * (1.0 + allowance)) << what;
   if (watch_energy) {
-    EXPECT_LE(watch.largest, before * (1.0 + share)) << what;
+    EXPECT_LE(watch.largest, before * (1.0 + allowance)) << what;
   }
   if (!elastic) {
     EXPECT_LT(after, before) << what;
   }
-  if (one_compression) {
-    const double bound = r.impulse.sum() / options.delta_p + 2.0 * double(line.contacts()) + 1.0;
+  if (one_compression && !how.adaptive()) {
+    const double delta_p = how.share * line.natural_impulse();
+    const double bound = r.impulse.sum() / delta_p + 2.0 * double(line.contacts()) + 1.0;
     EXPECT_LE(double(r.steps), bound) << what;
   }
-  std::printf("%-44s %10lld steps, energy %+.3e, momentum %+.1e\n", what.c_str(),
+  std::printf("%-52s %10lld steps, energy %+.3e, momentum %+.1e\n", what.c_str(),
               (long long)r.steps, after / before - 1.0,
               (line.momentum(out.velocity) - line.momentum(line.velocity)) / line.momentum_scale());
   return out;
+}
+
+// The impulse steps at delta_p = share x natural impulse.
+Outcome expect_sound(const Line& line, double share, const std::string& what,
+                     bool watch_energy = true, bool one_compression = false) {
+  return expect_sound(line, Integration{.share = share}, what, watch_energy, one_compression);
 }
 
 std::string name(const char* what, double value) {
@@ -296,6 +334,117 @@ TEST(Extremes, GrazingContact) {
   grazed.velocity(20) = -1e-12;  // the last bead creeps back towards the chain
   const Outcome plain = expect_sound(chain, 1e-4, "chain"),
                 touched = expect_sound(grazed, 1e-4, "chain, last contact grazing");
+  EXPECT_LT((plain.velocity - touched.velocity).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// The adaptive integrator over the grid above: e from 0 to 1, eta 1 to 2.5, both models.
+TEST(ExtremesAdaptive, RestitutionAndExponent) {
+  for (double exponent : {1.0, 1.5, 2.5})
+    for (double e : {0.0, 1e-3, 0.5, 1.0})
+      for (ComplianceModel model :
+           {ComplianceModel::bi_stiffness, ComplianceModel::mono_stiffness}) {
+        const std::string what = name("adaptive, eta", exponent) + name(", e", e) +
+                                 (model == ComplianceModel::mono_stiffness ? ", mono" : ", bi");
+        const Outcome out =
+            expect_sound(struck_chain(20, 1.0, law(exponent, e, model)), adaptive(1e-8), what);
+        if (e == 0.0) {
+          EXPECT_GE(out.velocity(0), -1e-12) << what;
+        }
+      }
+}
+
+// A lone contact: u+ = -e u- to about the tolerance (x V = 1 m/s; the tolerance bounds each
+// step's error, their sum comes to 0.3 to 1.8 times it) at every tolerance from 1e-3 to 1e-12,
+// and at 1e-13, the smallest double precision meets; below, the tolerance is refused, not
+// looped on.
+TEST(ExtremesAdaptive, TolerancesFrom1e3To1e12) {
+  for (double tolerance : {1e-3, 1e-6, 1e-9, 1e-12, 1e-13})
+    for (double e : {0.0, 0.5, 1.0}) {
+      const Outcome out =
+          expect_sound(struck_chain(1, 1.0, law(1.5, e)), adaptive(tolerance),
+                       name("adaptive, two bodies, tolerance", tolerance) + name(", e", e));
+      EXPECT_NEAR(out.result.velocity(0), e, 2.0 * tolerance) << tolerance;
+    }
+  for (double tolerance : {1e-3, 1e-6, 1e-9, 1e-12})
+    expect_sound(struck_chain(20, 1.0, law(1.5, 0.9)), adaptive(tolerance),
+                 name("adaptive, 20 beads e = 0.9, tolerance", tolerance), tolerance >= 1e-9);
+  for (double tolerance : {1e-14, 0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    try {
+      LzbAdaptiveIntegrator integrator({.tolerance = tolerance});
+      ADD_FAILURE() << "tolerance " << tolerance << " accepted";
+    } catch (const InvalidInput& error) {
+      EXPECT_NE(std::string(error.what()).find("double precision cannot meet it"),
+                std::string::npos)
+          << error.what();
+    }
+  }
+}
+
+TEST(ExtremesAdaptive, StiffnessAndMassRatios) {
+  for (double e : {1.0, 0.5}) {
+    Line line = struck_chain(20, 1.0, law(1.5, e));
+    for (std::size_t j = 1; j < line.laws.size(); j += 2) line.laws[j].stiffness *= 1e6;
+    EXPECT_GT(expect_sound(line, adaptive(1e-8), name("adaptive, stiffness ratio 1e6, e", e))
+                  .velocity(20),
+              0.0);
+    const Outcome heavy =
+        expect_sound(struck_chain(20, 1.0, law(1.5, e), 1e4 * kBeadMass), adaptive(1e-8),
+                     name("adaptive, striker 1e4 times heavier, e", e));
+    EXPECT_GT(heavy.velocity(0), 0.99);
+    const Outcome light =
+        expect_sound(struck_chain(20, 1.0, law(1.5, e), 1e-4 * kBeadMass), adaptive(1e-8),
+                     name("adaptive, striker 1e4 times lighter, e", e));
+    EXPECT_NEAR(light.velocity(0), -e, 0.02 * e) << e;
+  }
+}
+
+// Hertz contacts have no scale of their own, and the tolerance is relative to the fastest
+// approach: every speed is the same impact, v+ / V agreeing to round-off.
+TEST(ExtremesAdaptive, StrikerSpeedFrom1e4To10MetresPerSecond) {
+  VectorXd reference;
+  for (double speed : {1e-4, 1e-2, 1.0, 10.0}) {
+    const Outcome out = expect_sound(struck_chain(20, speed, law(1.5, 0.8)), adaptive(1e-8),
+                                     name("adaptive, speed (m/s)", speed));
+    const VectorXd scaled = out.velocity / speed;
+    if (reference.size() == 0) reference = scaled;
+    EXPECT_LT((scaled - reference).cwiseAbs().maxCoeff(), 1e-9) << speed;
+  }
+}
+
+TEST(ExtremesAdaptive, ChainsFrom2To100000Beads) {
+  for (int beads : {2, 10, 1000, 100000}) {
+    const Outcome out = expect_sound(struck_chain(beads, 1.0, law(1.5, 1.0)), adaptive(1e-6),
+                                     name("adaptive, beads", beads), beads <= 10);
+    const double contacts_per_step = double(out.result.contact_steps) / double(out.result.steps);
+    std::printf("  %.2f contacts per step\n", contacts_per_step);
+    EXPECT_LT(contacts_per_step, 12.0) << beads;
+    EXPECT_GT(out.velocity(beads), 0.9) << beads;
+  }
+}
+
+// Both ends struck at once: the adaptive integrator treats all contacts at once, so the
+// outcome mirrors itself to the tolerance.
+TEST(ExtremesAdaptive, StrikesAtBothEnds) {
+  for (double e : {1.0, 0.0}) {
+    Line line = struck_chain(20, 1.0, law(1.5, e));
+    line.velocity(line.mass.size() - 1) = -1.0;
+    const Outcome out = expect_sound(line, adaptive(1e-8), name("adaptive, both ends, e", e));
+    EXPECT_LE((out.velocity + out.velocity.reverse()).cwiseAbs().maxCoeff(), 1e-8) << e;
+  }
+}
+
+// A contact grazing at 1e-12 m/s is resolved to the tolerance of its own approach (unlike the
+// impulse steps at a delta_p set for 1 m/s, it needs no delta_p of its own), and a grazing
+// contact at the far end of a struck chain changes nothing.
+TEST(ExtremesAdaptive, GrazingContact) {
+  const Outcome lone = expect_sound(struck_chain(1, 1e-12, law(1.5, 1.0)), adaptive(1e-10),
+                                    "adaptive, two bodies grazing at 1e-12 m/s");
+  EXPECT_NEAR(lone.result.velocity(0), 1e-12, 1e-10 * 1e-12);
+  Line chain = struck_chain(20, 1.0, law(1.5, 1.0));
+  Line grazed = chain;
+  grazed.velocity(20) = -1e-12;
+  const Outcome plain = expect_sound(chain, adaptive(1e-10), "adaptive, chain"),
+                touched = expect_sound(grazed, adaptive(1e-10), "adaptive, chain, last grazing");
   EXPECT_LT((plain.velocity - touched.velocity).cwiseAbs().maxCoeff(), 1e-9);
 }
 
