@@ -2,8 +2,9 @@
 // C1, C2 (docs/experiments.md, e = 1), N (Nakagawa, e = 0.955), M type 2 (Melo, e = 0.965) and a
 // 1 000-bead C1, the error of the post-impact velocities and of the peak forces against a
 // reference, against the wall time of a run through the kernel (what `mimpact chain` pays),
-// for the LZB impulse dynamics over delta_p and for the compliant contacts integrated in time
-// over their tolerance. A second family times both methods against the length of the chain.
+// for the LZB impulse steps over delta_p, the adaptive LZB integrator over its tolerance and the
+// compliant contacts integrated in time over theirs. A second family times the three against
+// the length of the chain, up to 100 000 beads.
 // bench/work_precision.py runs this program and writes docs/performance.md and its figures.
 //
 // References: for e = 1, the compliant method at a tight tolerance (the Hertz chain, which LZB
@@ -51,6 +52,13 @@ Outcome run_lzb(const Case& c, const chains::ChainModel& model, double share) {
   return outcome_of(chains::simulate_chain_impact(model, c.scene.lzb_options(delta_p)));
 }
 
+Outcome run_adaptive(const chains::ChainModel& model, double tolerance) {
+  plugins::LzbImpactOptions options;
+  options.integrator = plugins::LzbIntegrator::adaptive;
+  options.adaptive.tolerance = tolerance;
+  return outcome_of(chains::simulate_chain_impact(model, options));
+}
+
 Outcome run_compliant(const Case& c, const chains::ChainModel& model, double tolerance) {
   chains::CompliantSpec spec = c.scene.compliant;
   spec.tolerance = tolerance;
@@ -79,14 +87,37 @@ double relative_error(const VectorXd& x, const VectorXd& reference) {
   return (x - reference).cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff();
 }
 
-enum class Method { lzb, compliant };
+enum class Method { impulse, adaptive, compliant };
+
+const char* method_name(Method method) {
+  switch (method) {
+    case Method::impulse:
+      return "impulse";
+    case Method::adaptive:
+      return "adaptive";
+    default:
+      return "compliant";
+  }
+}
+
+// A run of `method` with its knob: delta_p / (m V), or the tolerance.
+Outcome run(const Case& c, const chains::ChainModel& model, Method method, double knob) {
+  switch (method) {
+    case Method::impulse:
+      return run_lzb(c, model, knob);
+    case Method::adaptive:
+      return run_adaptive(model, knob);
+    default:
+      return run_compliant(c, model, knob);
+  }
+}
 
 void work_precision(benchmark::State& state, const Case* c, Method method, double knob) {
   const chains::ChainModel model = chains::build_chain_model(c->scene);
   const Outcome& exact = reference(*c, model);
   Outcome outcome;
   for (auto _ : state) {
-    outcome = method == Method::lzb ? run_lzb(*c, model, knob) : run_compliant(*c, model, knob);
+    outcome = run(*c, model, method, knob);
     benchmark::DoNotOptimize(outcome.velocity.data());
   }
   state.counters["velocity_error"] = relative_error(outcome.velocity, exact.velocity);
@@ -122,15 +153,16 @@ std::vector<Case> cases() {
   return all;
 }
 
-// The cost against the length: C1-like chains of n beads, LZB at delta_p = 1e-4 m V, the
-// compliant method at tolerance 1e-6, each run until the wave has left: it forms within
-// 2e-4 s and crosses a bead in 3e-5 s (LZB: 6.3e-4 s for 20 beads, 0.0297 s for 1 000).
+// The cost against the length: C1-like chains of n beads, the impulse steps at delta_p = 1e-4
+// m V, the adaptive and compliant methods at tolerance 1e-6, each run until the wave has left:
+// it forms within 2e-4 s and crosses a bead in 3e-5 s (LZB: 6.3e-4 s for 20 beads, 0.0297 s
+// for 1 000).
 void chain_length(benchmark::State& state, Method method, int beads) {
   Case c{"n", c1_like_chain(beads, 2e-4 + 3.2e-5 * beads), 0.0, {}};
   const chains::ChainModel model = chains::build_chain_model(c.scene);
   Outcome outcome;
   for (auto _ : state) {
-    outcome = method == Method::lzb ? run_lzb(c, model, 1e-4) : run_compliant(c, model, 1e-6);
+    outcome = run(c, model, method, method == Method::impulse ? 1e-4 : 1e-6);
     benchmark::DoNotOptimize(outcome.velocity.data());
   }
   state.counters["beads"] = beads;
@@ -149,25 +181,19 @@ std::string knob_text(double knob) {
 
 int main(int argc, char** argv) {
   static const std::vector<Case> all = cases();
-  for (const Case& c : all) {
-    for (double share : c.shares)
-      benchmark::RegisterBenchmark(("WorkPrecision/" + c.name + "/lzb/" + knob_text(share)).c_str(),
-                                   work_precision, &c, Method::lzb, share)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
-    for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10})
+  const std::vector<double> tolerances{1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  for (const Case& c : all)
+    for (Method method : {Method::impulse, Method::adaptive, Method::compliant})
+      for (double knob : method == Method::impulse ? c.shares : tolerances)
+        benchmark::RegisterBenchmark(
+            ("WorkPrecision/" + c.name + "/" + method_name(method) + "/" + knob_text(knob)).c_str(),
+            work_precision, &c, method, knob)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+  for (int beads : {10, 30, 100, 300, 1000, 3000, 10000, 30000, 100000})
+    for (Method method : {Method::impulse, Method::adaptive, Method::compliant})
       benchmark::RegisterBenchmark(
-          ("WorkPrecision/" + c.name + "/compliant/" + knob_text(tolerance)).c_str(),
-          work_precision, &c, Method::compliant, tolerance)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
-  }
-  for (int beads : {10, 30, 100, 300, 1000, 3000})
-    for (Method method : {Method::lzb, Method::compliant})
-      benchmark::RegisterBenchmark(
-          ("ChainLength/" + std::string(method == Method::lzb ? "lzb/" : "compliant/") +
-           std::to_string(beads))
-              .c_str(),
+          ("ChainLength/" + std::string(method_name(method)) + "/" + std::to_string(beads)).c_str(),
           chain_length, method, beads)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();

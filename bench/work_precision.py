@@ -25,7 +25,12 @@ CASES = {"C1": "C1: 20 beads, e = 1", "C2": "C2: 20 tapered beads, e = 1",
          "N": "N: Nakagawa, 19 tapered beads, e = 0.955", "M2": "M type 2: 30 beads, e = 0.965",
          "chain1000": "1 000 beads (C1's), e = 1"}
 TARGETS = (1e-2, 1e-4, 1e-6)
-METHODS = ("lzb", "compliant")
+METHODS = ("impulse", "adaptive", "compliant")
+NAMES = {"impulse": "LZB impulse steps", "adaptive": "adaptive LZB", "compliant": "compliant"}
+KNOBS = {"impulse": "over ΔP", "adaptive": "over its tolerance", "compliant": "over its tolerance"}
+MARKERS = {"impulse": "o", "adaptive": "^", "compliant": "s"}
+COLORS = {"impulse": "tab:blue", "adaptive": "tab:orange", "compliant": "tab:green"}
+LENGTH_SETTINGS = {"impulse": "ΔP = 1e-4 m V", "adaptive": "tolerance 1e-6", "compliant": "tolerance 1e-6"}
 
 
 def run_family(bench, family, out, reuse):
@@ -78,9 +83,9 @@ def time_to_reach(points, column, target):
     return None, "not reached"
 
 
-def extrapolated_lzb(points, column, target):
-    """LZB's time for an accuracy beyond its sweep: first order, so time x error is constant
-    along the finest runs."""
+def extrapolated_impulse(points, column, target):
+    """The impulse steps' time for an accuracy beyond their sweep: first order, so time x error
+    is constant along the finest runs."""
     finest = min(points, key=lambda p: p[column])
     return finest[0] * finest[column] / target
 
@@ -101,35 +106,39 @@ def cell(seconds, how, floor):
     return {"at most": "≤ " + text, "extrapolated": "≈ " + text + " (extrapolated)"}.get(how, text)
 
 
-def faster(lzb, compliant):
-    """Which method reaches the accuracy first, and by how much. When the slower method's
-    time is its fastest run ('at most'), the ratio is against that run."""
-    names = {"lzb": "LZB", "compliant": "compliant"}
-    times = {"lzb": lzb, "compliant": compliant}
-    reached = [m for m in METHODS if times[m][0] is not None]
+def ratio_text(ratio):
+    return f"{ratio:.3g}" if ratio < 100 else f"{ratio:.0f}"
+
+
+def fastest(times):
+    """Which method reaches the accuracy first, and by how much against the next. When the
+    next one's time is its fastest run ('at most'), the ratio is against that run."""
+    reached = sorted((m for m in METHODS if times[m][0] is not None), key=lambda m: times[m][0])
     if not reached:
-        return "neither"
+        return "none"
     if len(reached) == 1:
-        return names[reached[0]]
-    first, second = sorted(METHODS, key=lambda m: times[m][0])
-    ratio = times[second][0] / times[first][0]
-    ratio_text = f"{ratio:.3g}" if ratio < 100 else f"{ratio:.0f}"
-    if times[second][1] == "at most":  # the slower one's fastest run is already better
-        return f"{names[first]}, ×{ratio_text} on the other's fastest run"
+        return NAMES[reached[0]]
+    first, second = reached[:2]
+    ratio = ratio_text(times[second][0] / times[first][0])
+    if times[second][1] == "at most":
+        return f"{NAMES[first]}, ×{ratio} on the next one's fastest run"
     if "extrapolated" in (times[first][1], times[second][1]):
-        return f"{names[first]}, ×{ratio_text} (extrapolated)"
-    return f"{names[first]}, ×{ratio_text}"
+        return f"{NAMES[first]}, ×{ratio} (extrapolated)"
+    return f"{NAMES[first]}, ×{ratio}"
 
 
 def work_precision_figure(data, path):
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
     for ax, case in zip(axes.flat, CASES):
-        for method, marker in zip(METHODS, "os"):
+        for method in METHODS:
             points = data[case][method]
             t = [p[0] for p in points]
-            label = "LZB over ΔP" if method == "lzb" else "compliant over its tolerance"
-            ax.loglog(t, [p[1] for p in points], marker + "-", ms=4, label=label + ", velocities")
-            ax.loglog(t, [p[2] for p in points], marker + "--", ms=3, mfc="none", label=label + ", peak forces")
+            label = f"{NAMES[method]} {KNOBS[method]}"
+            marker = MARKERS[method]
+            ax.loglog(t, [p[1] for p in points], marker + "-", ms=4, color=COLORS[method],
+                      label=label + ", velocities")
+            ax.loglog(t, [p[2] for p in points], marker + "--", ms=3, mfc="none", color=COLORS[method],
+                      label=label + ", peak forces")
         for target in TARGETS:
             ax.axhline(target, color="0.8", lw=0.6, zorder=0)
         ax.set_title(CASES[case], fontsize=9)
@@ -137,7 +146,7 @@ def work_precision_figure(data, path):
         ax.set_ylabel("relative error")
     axes.flat[-1].axis("off")
     handles, labels = axes.flat[0].get_legend_handles_labels()
-    axes.flat[-1].legend(handles, labels, loc="center", fontsize=9)
+    axes.flat[-1].legend(handles, labels, loc="center", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -150,14 +159,14 @@ def chain_length_figure(rows, path):
         lengths.setdefault(method, []).append((int(beads), r["seconds"], r["steps"], r["last_velocity"]))
     fits = {}
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
-    for method, marker in zip(METHODS, "os"):
+    for method in METHODS:
         points = sorted(lengths[method])
         n = np.array([p[0] for p in points], dtype=float)
         t = np.array([p[1] for p in points])
         long_enough = n >= 100
         fits[method] = np.polyfit(np.log(n[long_enough]), np.log(t[long_enough]), 1)[0]
-        name = "LZB, ΔP = 1e-4 m V" if method == "lzb" else "compliant, tolerance 1e-6"
-        ax.loglog(n, t, marker + "-", label=f"{name}: time ∝ n^{fits[method]:.2f}")
+        ax.loglog(n, t, MARKERS[method] + "-", color=COLORS[method],
+                  label=f"{NAMES[method]}, {LENGTH_SETTINGS[method]}: time ∝ n^{fits[method]:.2f}")
     ax.set_xlabel("beads n")
     ax.set_ylabel("wall time of the impact (s)")
     ax.legend(fontsize=8)
@@ -181,41 +190,44 @@ def main():
     context, rows = run_family(args.bench, "WorkPrecision", work / "work_precision.json", args.reuse)
     data = curves(rows)
     work_precision_figure(data, out / "performance" / "work_precision.png")
-    table = ["| chain | accuracy | LZB: velocities | compliant: velocities | faster | LZB: peak forces | compliant: peak forces | faster |",
-             "|---|---|---|---|---|---|---|---|"]
+    table = ["| chain | accuracy | " + " | ".join(f"{NAMES[m]}: velocities" for m in METHODS) + " | fastest | "
+             + " | ".join(f"{NAMES[m]}: peak forces" for m in METHODS) + " | fastest |",
+             "|---|---|" + "---|" * (2 * len(METHODS) + 2)]
     verdicts = {target: [] for target in TARGETS}
+    times = {}
     for case in CASES:
         for target in TARGETS:
             cells = []
             for column in (1, 2):
                 reached = {m: time_to_reach(data[case][m], column, target) for m in METHODS}
-                if reached["lzb"][0] is None:
-                    reached["lzb"] = (extrapolated_lzb(data[case]["lzb"], column, target), "extrapolated")
+                if reached["impulse"][0] is None:
+                    reached["impulse"] = (extrapolated_impulse(data[case]["impulse"], column, target), "extrapolated")
                 floors = {m: min(p[column] for p in data[case][m]) for m in METHODS}
-                verdict = faster(reached["lzb"], reached["compliant"])
+                verdict = fastest(reached)
                 if column == 1:
                     verdicts[target].append((case, verdict))
-                cells += [cell(*reached["lzb"], floors["lzb"]), cell(*reached["compliant"], floors["compliant"]), verdict]
+                    times[(case, target)] = reached
+                cells += [cell(*reached[m], floors[m]) for m in METHODS] + [verdict]
             table.append(f"| {case} | {target:.0e} | " + " | ".join(cells) + " |")
 
     _, length_rows = run_family(args.bench, "ChainLength", work / "chain_length.json", args.reuse)
     lengths, fits = chain_length_figure(length_rows, out / "performance" / "chain_length.png")
-    length_table = ["| beads | LZB: time | LZB: impulse steps | compliant: time | compliant: steps | last bead's speed, LZB / compliant (m/s) |",
-                    "|---|---|---|---|---|---|"]
+    length_table = ["| beads | " + " | ".join(f"{NAMES[m]}: time | steps" for m in METHODS)
+                    + " | last bead's speed, " + " / ".join(NAMES[m] for m in METHODS) + " (m/s) |",
+                    "|---|" + "---|" * (2 * len(METHODS) + 1)]
     by_length = {m: {p[0]: p for p in lengths[m]} for m in METHODS}
-    for n in sorted(by_length["lzb"]):
-        lzb, compliant = by_length["lzb"][n], by_length["compliant"][n]
-        length_table.append(f"| {n} | {cell(lzb[1], 'measured', 0)} | {lzb[2]:.0f} | {cell(compliant[1], 'measured', 0)} | "
-                            f"{compliant[2]:.0f} | {lzb[3]:.5f} / {compliant[3]:.5f} |")
+    for n in sorted(by_length["impulse"]):
+        runs = [by_length[m][n] for m in METHODS]
+        length_table.append(f"| {n} | " + " | ".join(f"{cell(r[1], 'measured', 0)} | {r[2]:.0f}" for r in runs)
+                            + " | " + " / ".join(f"{r[3]:.6f}" for r in runs) + " |")
+    largest = max(by_length["impulse"])
+    last_speeds = [by_length[m][largest][3] for m in METHODS]
+    spread = max(last_speeds) - min(last_speeds)
+    ten_times = {m: by_length[m][10000][1] / by_length[m][1000][1] for m in METHODS}
 
     exponents = {m: ", ".join(f"{cost_exponent(data[c][m]):.2f}" for c in CASES) for m in METHODS}
-    short_ratios = []
-    for case in ("C1", "C2", "N", "M2"):
-        lzb, compliant = time_to_reach(data[case]["lzb"], 1, 1e-4), time_to_reach(data[case]["compliant"], 1, 1e-4)
-        short_ratios.append(lzb[0] / compliant[0])
-    short_range = f"{min(short_ratios):.0f} to {max(short_ratios):.0f}"
+    c1_adaptive, c1_impulse = times[("C1", 1e-6)]["adaptive"], times[("C1", 1e-6)]["impulse"]
     m2_floor = min(p[1] for p in data["M2"]["compliant"])
-    long_chain = ", ".join(f"{dict(verdicts[t])['chain1000'].split(',')[0]} at {t:.0e}" for t in TARGETS)
 
     def summary(target):
         counts = {}
@@ -233,44 +245,54 @@ Benchmark, Release build, {machine}, one core):
 
 The work-precision diagrams come from one run of the `WorkPrecision` family, the cost against
 the chain's length from one run of `ChainLength`. A run is a whole impact through the kernel, as
-`mimpact chain` does it: the LZB impulse dynamics (event-driven scheme, one multiple impact) with
-ΔP a share of the striker's momentum m V, from 1e-2 down to 1e-6, or the compliant contacts
-integrated in time (Dormand-Prince 5(4), contact events located) at relative tolerances 1e-2 to
-1e-10. The error is ‖x − x_ref‖∞ / ‖x_ref‖∞ over the post-impact velocities, and over every
-contact's largest force. The reference is, for e = 1, the compliant method at tolerance 1e-12
-(1e-10 for the 1 000 beads): the Hertz chain, which LZB converges to at first order; for e < 1,
-where the two laws differ on re-loading (docs/model.md §3), LZB Richardson-extrapolated from ΔP = 1e-6
-and 5e-7 m V. The compliant runs of the 1 000-bead chain stop at 0.032 s, after the wave has left
-(0.0297 s): behind the wave the beads come to rest touching, so their contacts never all open.
+`mimpact chain` does it, by one of three methods: the LZB impulse steps (event-driven scheme, one
+multiple impact) with ΔP a share of the striker's momentum m V, from 1e-2 down to 1e-6; the
+adaptive LZB integrator (the same model's continuous limit, Dormand-Prince 5(4), every switch
+located; docs/model.md §10) at tolerances 1e-2 to 1e-10; the compliant contacts integrated in
+time (Dormand-Prince 5(4), contact events located, bodies in free flight in closed form;
+docs/model.md §11) at relative tolerances 1e-2 to 1e-10. The error is ‖x − x_ref‖∞ / ‖x_ref‖∞
+over the post-impact velocities, and over every contact's largest force. The reference is, for
+e = 1, the compliant method at tolerance 1e-12 (1e-10 for the 1 000 beads): the Hertz chain,
+which LZB converges to; for e < 1, where the two laws differ on re-loading (docs/model.md §3),
+the impulse steps Richardson-extrapolated from ΔP = 1e-6 and 5e-7 m V, themselves about 1e-7
+from LZB's limit. The compliant runs of the 1 000-bead chain stop at 0.032 s, after the wave has
+left (0.0297 s): behind the wave the beads come to rest touching, so their contacts never all open.
 
 ![work-precision](performance/work_precision.png)
 
 Time to reach a relative accuracy, interpolated in log-log between the two runs around it on
 the Pareto front (the runs no faster run beats); "≤" when the fastest run is already better;
-for LZB beyond its sweep, extrapolated at first order from its finest run ("≈"); "not reached"
-when the compliant method never gets there (with the best error it reached).
+for the impulse steps beyond their sweep, extrapolated at first order from the finest run
+("≈"); "not reached" when a method never gets there (with the best error it reached).
 
 {chr(10).join(table)}
 
-Faster at 1e-2 relative accuracy of the post-impact velocities: {summary(1e-2)}.
-Faster at 1e-4: {summary(1e-4)}. Faster at 1e-6: {summary(1e-6)}.
+Fastest at 1e-2 relative accuracy of the post-impact velocities: {summary(1e-2)}.
+Fastest at 1e-4: {summary(1e-4)}. Fastest at 1e-6: {summary(1e-6)}.
 
-Why: LZB is first order in ΔP and its cost is the number of steps, ΣP / ΔP, so its time goes as
-the error to the power {exponents['lzb']} (fitted slope of log time against log error, per chain); the
-compliant method is of fifth order and its time goes as the error to the power
-{exponents['compliant']}. On the chains of 20 to 30 beads the compliant method needs a few hundred
-steps, and from 1e-4 on it is {short_range} times faster than LZB's hundreds of thousands of steps.
-On a long chain every compliant step integrates every bead (below): on the 1 000-bead chain the
-faster method is {long_chain}. For M2 (e < 1) the compliant
-method stops {m2_floor:.1e} from LZB's limit: the two laws differ where a contact re-loads. LZB's
-own strengths are elsewhere: its step count, ΣP / ΔP, does not involve the stiffness of the
-contacts, and inside the event-driven scheme an impact is one event between free flights.
+Why: the impulse steps are first order in ΔP and their cost is the number of steps, ΣP / ΔP,
+so their time goes as the error to the power {exponents['impulse']} (fitted slope of log time
+against log error, per chain). The adaptive LZB integrator and the compliant method are of
+fifth order: their times go as the error to the powers {exponents['adaptive']} and
+{exponents['compliant']}. On C1, 1e-6 takes the adaptive integrator {cell(*c1_adaptive, 0)}, and
+the impulse steps {cell(*c1_impulse, 0)}: ×{ratio_text(c1_impulse[0] / c1_adaptive[0])}. Where e < 1
+the adaptive integrator is LZB itself, and its curve meets the impulse steps' limit; the
+compliant method stops {m2_floor:.1e} from it on M2, the two laws differing where a contact
+re-loads.
 
 ## Cost against the length of the chain
 
-C1's beads, n of them, struck at one end; LZB at ΔP = 1e-4 m V, the compliant method at tolerance
-1e-6, each until the wave has left the chain (2e-4 s + 3.2e-5 s a bead; the last column checks it). Fitted over n ≥ 100, the time of
-LZB grows as n^{fits['lzb']:.2f} and that of the compliant method as n^{fits['compliant']:.2f}.
+C1's beads, n of them, struck at one end; the impulse steps at ΔP = 1e-4 m V, the adaptive and
+compliant methods at tolerance 1e-6, each until the wave has left the chain (2e-4 s + 3.2e-5 s a
+bead; the last column checks it). Fitted over n ≥ 100, the time of the impulse steps grows as
+n^{fits['impulse']:.2f}, that of the adaptive integrator as n^{fits['adaptive']:.2f} and that of
+the compliant method as n^{fits['compliant']:.2f}: the work of a step is that of the few contacts
+(or bodies) the wave holds, never the whole chain's. From 1 000 to 10 000 beads the time grows
+×{ten_times['impulse']:.1f}, ×{ten_times['adaptive']:.1f} and ×{ten_times['compliant']:.1f}.
+A tolerance bounds the error each step adds, and along a chain the steps' errors add up: at
+tolerance 1e-6 the three methods' speeds of the last of {largest} beads spread over
+{spread:.1e} m/s (the last column); a 100 000-bead chain needs a tolerance of about 1e-9 to be
+right to 1e-6 (docs/model.md §10).
 
 ![chain length](performance/chain_length.png)
 

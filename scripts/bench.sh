@@ -5,6 +5,7 @@ cd "$(dirname "$0")/.."
 source scripts/packages.sh
 ensure_packages "${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/release -j2 --target bench_lzb bench_lemke >/dev/null
+cmake --build build/release -j2 --target bench_lzb bench_lemke bench_event_driven >/dev/null
 build/release/bench/bench_lzb "$@"
 build/release/bench/bench_lemke "$@"
+build/release/bench/bench_event_driven "$@"
