@@ -375,12 +375,12 @@ def experiment_j(runner, out):
              "|---|---|---|---|---|---|"]
     for e, incident, interface, ratio in rows:
         _, interface_published, ratio_published, ratio_measured = published[e]
-        published = f"ratio {ratio_published:g} ({deviation(ratio, ratio_published):+.1f} %)"
+        simulated = f"ratio {ratio_published:g} ({deviation(ratio, ratio_published):+.1f} %)"
         if interface_published:
-            published += f", interface {interface_published:g} N ({deviation(interface, interface_published):+.1f} %)"
+            simulated += f", interface {interface_published:g} N ({deviation(interface, interface_published):+.1f} %)"
         measured = f"ratio {ratio_measured:g}" if ratio_measured else "interface 20 N"
         table.append(f"| {e:g}, {0.31 if e == 1.0 else 0.40} m/s | {incident:.2f} | {interface:.2f} | "
-                     f"{ratio:.3f} | {published} | {measured} |")
+                     f"{ratio:.3f} | {simulated} | {measured} |")
     table += ["", "| e | small beads | significant waves in the first train (≥ 5 % of the first) | paper, simulated | paper, measured |",
               "|---|---|---|---|---|"]
     for (tag, small), count in sorted(counts.items()):
