@@ -54,7 +54,7 @@ void BM_CradleAdaptive(benchmark::State& state) {
   impacts.adaptive.tolerance = double(state.range(0)) * 1e-12;
   swing_one_second(state, impacts);
 }
-BENCHMARK(BM_CradleAdaptive)->Arg(100)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CradleAdaptive)->Arg(1000)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

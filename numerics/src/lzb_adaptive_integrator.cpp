@@ -28,13 +28,16 @@ enum EventKind : int {
   release,          // delta_j reaches its release level: the contact leaves the impact
 };
 
-// Interior samples of each step searched for switches (besides its two ends).
-constexpr int kSamplesPerStep = 4;
+// Interior samples of each step searched for switches (besides its two ends). A velocity that
+// crosses 0 and back between two samples, a third of a step apart, turns within the step's
+// error: the switch it misses changes the result by about the tolerance.
+constexpr int kSamplesPerStep = 2;
 
 // The share of the tolerance allowed to each step's local error: the errors of a few hundred
-// steps add up, and a lone contact integrated to tolerance 1e-13 must come out exact to
-// 1e-12 (measured with share 1: 5e-12; with 1/30: see the tests).
-constexpr double kLocalErrorShare = 1.0 / 30.0;
+// steps add up, and the velocities and the energy must come out within the tolerance (with
+// share 1/30 a lone elastic contact at 1e-9 gained 1.3 times it; with 1/100 the extremes
+// suite's largest is 0.93 times it, at 1e-12).
+constexpr double kLocalErrorShare = 1.0 / 100.0;
 
 // The watched quantities at one time: the members' velocities and the active ones' delta.
 struct Watched {
@@ -81,7 +84,7 @@ class LzbAdaptiveIntegrator::Impact {
     return std::max(y[member], 0.0) * delta_scale_[members_[member]];
   }
   double force(Index j, double delta) const {
-    return stiffness_[j] * std::pow(delta, exponent_[j]);
+    return stiffness_[j] * power_law(delta, exponent_[j]);
   }
   double energy(Index j, double delta) const {
     return force(j, delta) * delta / (1.0 + exponent_[j]);

@@ -34,7 +34,7 @@ kernel::ContactForces AccelerationLcpProblem::solve(const kernel::NonSmoothDynam
     return forces;
   }
   ++lcp_count_;
-  const numerics::LemkeResult result = numerics::solve_lemke(MatrixXd(dynamics_->H()), b, options_);
+  const numerics::LemkeResult result = numerics::solve_lemke(dynamics_->H(), b, options_);
   forces.force = result.z;
   forces.acceleration = result.w;
   forces.solved = result.solved();

@@ -222,13 +222,12 @@ double CompliantIntegrator::contact_force(std::size_t j, double delta) const {
   if (!(delta > 0.0)) return 0.0;
   const numerics::ContactLaw& law = laws_[j];
   const double delta_max = max_compression_[j];
-  if (delta >= delta_max || law.restitution >= 1.0)
-    return law.stiffness * std::pow(delta, law.exponent);
+  if (delta >= delta_max || law.restitution >= 1.0) return law.force(delta);
   const double e = law.restitution;
   const double delta_r = delta_max * (1.0 - e * e);
   if (delta <= delta_r) return 0.0;
-  return law.stiffness * std::pow(delta_max, law.exponent) *
-         std::pow((delta - delta_r) / (delta_max - delta_r), law.exponent);
+  return law.force(delta_max) *
+         numerics::power_law((delta - delta_r) / (delta_max - delta_r), law.exponent);
 }
 
 // ---- who takes part ----------------------------------------------------------------------

@@ -24,6 +24,7 @@ void ContactDynamics::initialize(const kernel::NonSmoothDynamicalSystem& system)
   geometry_constant_ = true;
   for (Index j = 0; j < system.interaction_count(); ++j)
     geometry_constant_ = geometry_constant_ && system.interaction(j).relation().is_linear();
+  dense_ = system.dof() <= kDenseUpTo;
   free_acceleration_.setZero(system.dof());
   set_.clear();
   set_valid_ = factor_valid_ = inverse_mass_valid_ = pattern_analyzed_ = false;
@@ -65,6 +66,7 @@ void ContactDynamics::assemble_inverse_mass() {
   }
   inverse_mass_.resize(system_->dof(), system_->dof());
   inverse_mass_.setFromTriplets(entries.begin(), entries.end());
+  if (dense_) inverse_mass_dense_ = MatrixXd(inverse_mass_);
   inverse_mass_valid_ = true;
 }
 
@@ -73,6 +75,26 @@ void ContactDynamics::assemble_set(const VectorXd& q, std::span<const Index> set
   if (same_set && geometry_constant_ && inverse_mass_valid_) return;
   if (!inverse_mass_valid_) assemble_inverse_mass();
   set_.assign(set.begin(), set.end());
+  if (dense_)
+    assemble_dense_set(q, set);
+  else
+    assemble_sparse_set(q, set);
+  b_.resize(Index(set.size()));
+  lambda_.resize(Index(set.size()));
+  set_valid_ = true;
+  factor_valid_ = false;
+}
+
+void ContactDynamics::assemble_dense_set(const VectorXd& q, std::span<const Index> set) {
+  W_dense_.setZero(system_->dof(), Index(set.size()));
+  for (std::size_t k = 0; k < set.size(); ++k)
+    system_->for_each_jacobian_entry(
+        set[k], q, [&](Index row, double value) { W_dense_(row, Index(k)) += value; });
+  mobility_dense_.noalias() = inverse_mass_dense_ * W_dense_;
+  H_dense_.noalias() = W_dense_.transpose() * mobility_dense_;
+}
+
+void ContactDynamics::assemble_sparse_set(const VectorXd& q, std::span<const Index> set) {
   W_ = system_->jacobian_matrix(set, q);
   mobility_ = inverse_mass_ * W_;
   H_ = W_.transpose() * mobility_;
@@ -88,10 +110,6 @@ void ContactDynamics::assemble_set(const VectorXd& q, std::span<const Index> set
     analyzed_inner_.assign(H_.innerIndexPtr(), H_.innerIndexPtr() + H_.nonZeros());
     pattern_analyzed_ = false;
   }
-  b_.resize(Index(set.size()));
-  lambda_.resize(Index(set.size()));
-  set_valid_ = true;
-  factor_valid_ = false;
 }
 
 void ContactDynamics::evaluate(double t, const VectorXd& q, const VectorXd& v,
@@ -116,7 +134,10 @@ void ContactDynamics::evaluate(double t, const VectorXd& q, const VectorXd& v,
   }
   if (set.empty()) return;
   assemble_set(q, set);
-  b_.noalias() = W_.transpose() * free_acceleration_;
+  if (dense_)
+    b_.noalias() = W_dense_.transpose() * free_acceleration_;
+  else
+    b_.noalias() = W_.transpose() * free_acceleration_;
   for (std::size_t k = 0; k < set.size(); ++k) b_(Index(k)) += system_->jacobian_rate(set[k], q, v);
 }
 
@@ -125,24 +146,45 @@ const VectorXd& ContactDynamics::bilateral_force() {
   return solve(lambda_);
 }
 
-const VectorXd& ContactDynamics::solve(const VectorXd& rhs) {
-  if (!factor_valid_) {
+// H is singular when a pivot of its LDL^T vanishes against the largest: the contacts of the
+// set are then redundant (e.g. two contacts on the same coordinates).
+void ContactDynamics::factorize_H() {
+  VectorXd pivots;
+  if (dense_) {
+    ldlt_dense_.compute(H_dense_);
+    pivots = ldlt_dense_.vectorD();
+  } else {
     if (!pattern_analyzed_) ldlt_.analyzePattern(H_);
     pattern_analyzed_ = true;
     ldlt_.factorize(H_);
-    if (ldlt_.info() != Eigen::Success)
-      throw Error(
-          "the persistent contacts are redundant (H is singular); the bilateral "
-          "contact forces are not determined");
-    factor_valid_ = true;
+    if (ldlt_.info() == Eigen::Success) pivots = ldlt_.vectorD();
   }
-  lambda_ = ldlt_.solve(rhs);
+  if (pivots.size() == 0 || !(pivots.cwiseAbs().minCoeff() > 1e-14 * pivots.cwiseAbs().maxCoeff()))
+    throw Error(
+        "the persistent contacts are redundant (H is singular); the bilateral "
+        "contact forces are not determined");
+  factor_valid_ = true;
+}
+
+const VectorXd& ContactDynamics::solve(const VectorXd& rhs) {
+  if (!factor_valid_) factorize_H();
+  if (dense_)
+    lambda_ = ldlt_dense_.solve(rhs);
+  else
+    lambda_ = ldlt_.solve(rhs);
   return lambda_;
 }
 
 void ContactDynamics::acceleration(const VectorXd& lambda, VectorXd& out) const {
   out = free_acceleration_;
-  if (lambda.size()) out.noalias() += mobility_ * lambda;
+  if (lambda.size()) add_mobility_times(lambda, out);
+}
+
+void ContactDynamics::add_mobility_times(const VectorXd& x, VectorXd& out) const {
+  if (dense_)
+    out.noalias() += mobility_dense_ * x;
+  else
+    out += mobility_ * x;
 }
 
 void ContactDynamics::apply_inverse_mass(VectorXd& x) const {

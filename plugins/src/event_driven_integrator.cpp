@@ -361,7 +361,7 @@ void EventDrivenIntegrator::restore_penetrations() {
       g(Index(k)) = system_->gap(penetrating[k], q_);
     dynamics.evaluate(time_, q_, v_, penetrating);
     const VectorXd shift = dynamics.solve(-g);
-    q_ += dynamics.mobility() * shift;
+    dynamics.add_mobility_times(shift, q_);
   }
 }
 
@@ -405,7 +405,7 @@ std::vector<Index> EventDrivenIntegrator::bring_to_rest() {
     if (u.cwiseAbs().maxCoeff() > 0.0) {
       dynamics.evaluate(time_, q_, v_, resting);
       const VectorXd impulse = dynamics.solve(-u);
-      v_ += dynamics.mobility() * impulse;
+      dynamics.add_mobility_times(impulse, v_);
     }
   }
   return resting;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <string_view>
 #include <utility>
 
@@ -41,6 +42,21 @@ struct ContactLaw {
   // the law F = K delta^eta rewritten with E = K delta^(1+eta) / (1+eta).
   double force_coefficient() const;
   double force_from_energy(double energy) const;
+  // K delta^eta, the loading force at indentation delta >= 0 (m).
+  double force(double delta) const;
 };
+
+// x^exponent for x >= 0, with the linear and Hertz exponents (1 and 3/2) by a product and a
+// square root: the force laws are evaluated at every stage of the integrators, and std::pow
+// is several times dearer than sqrt.
+inline double power_law(double x, double exponent) {
+  if (exponent == 1.5) return x * std::sqrt(x);
+  if (exponent == 1.0) return x;
+  return std::pow(x, exponent);
+}
+
+inline double ContactLaw::force(double delta) const {
+  return stiffness * power_law(delta, exponent);
+}
 
 }  // namespace mimpact::numerics
