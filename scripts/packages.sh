@@ -2,8 +2,9 @@
 # Only the Debian archive is needed; nothing is downloaded at build time.
 
 BUILD_PACKAGES=(cmake make g++ libeigen3-dev libboost-dev libboost-program-options-dev
-                libsuitesparse-dev nlohmann-json3-dev)
-TEST_PACKAGES=(libgtest-dev libbenchmark-dev clang-format)
+                libsuitesparse-dev nlohmann-json3-dev
+                python3-dev pybind11-dev python3-numpy)  # the Python module
+TEST_PACKAGES=(libgtest-dev libbenchmark-dev clang-format python3-pytest)
 
 ensure_packages() {
   local missing=()

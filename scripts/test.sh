@@ -47,3 +47,8 @@ cmake -S examples/linking -B build/linking -DCMAKE_PREFIX_PATH="$PWD/build/insta
 cmake --build build/linking -j"$jobs"
 build/linking/two_balls
 build/linking/chain_from_scene >/dev/null && echo "chain_from_scene: momentum conserved"
+site=$(find build/install-moved -name _mimpact*.so -printf '%h\n' | head -1)
+PYTHONPATH="$site/.." /usr/bin/python3 -c "
+import mimpact
+r = mimpact.run_chain('examples/scenes/c1.json')
+print('installed Python module: C1 last bead leaves at %.6f m/s' % r.post_impact_velocities[-1])"

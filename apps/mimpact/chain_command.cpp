@@ -10,8 +10,9 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "convergence_report.hpp"
+#include "mimpact/chains/chain_convergence.hpp"
 #include "mimpact/chains/chain_impact.hpp"
-#include "mimpact/chains/chain_recorder.hpp"
+#include "mimpact/chains/chain_run.hpp"
 #include "mimpact/common/error.hpp"
 #include "output_directory.hpp"
 
@@ -41,19 +42,6 @@ class ProgressReporter : public numerics::ImpactObserver {
   bool reported_ = false;
 };
 
-// Hands every sample to several observers.
-class Observers : public numerics::ImpactObserver {
- public:
-  void add(numerics::ImpactObserver& observer) { observers_.push_back(&observer); }
-  void observe(const numerics::ImpactSample& sample) override {
-    for (numerics::ImpactObserver* observer : observers_) observer->observe(sample);
-  }
-  bool empty() const { return observers_.empty(); }
-
- private:
-  std::vector<numerics::ImpactObserver*> observers_;
-};
-
 // LZB's relative error is 1 to 13 times delta_p / (m V) on the chains of docs/performance.md:
 // past 1 % of the striker's momentum the outcome is off by percents.
 void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
@@ -72,37 +60,6 @@ std::string method_line(const chains::ChainScene& scene, std::optional<double> d
     return "adaptive LZB, tolerance " + to_text(scene.impact_options().adaptive.tolerance);
   if (delta_p) return "LZB impulse steps, delta_p = " + to_text(*delta_p) + " N s";
   return "compliant contacts integrated in time";
-}
-
-// The LZB impact (at delta_p for the impulse steps, none for the adaptive integrator) with
-// the recorder and, on a terminal, the progress report as observers.
-chains::ChainImpact run_lzb(const chains::ChainScene& scene, const chains::ChainModel& model,
-                            std::optional<double> delta_p, const std::string& delta_p_field,
-                            bool writes_series, bool quiet, chains::ChainTimeSeries& series) {
-  plugins::LzbImpactOptions options = scene.impact_options();
-  if (delta_p) {
-    chains::check_delta_p(model, *delta_p, options.impulse_steps.max_steps, delta_p_field);
-    options.impulse_steps = scene.lzb_options(*delta_p);
-    warn_if_coarse(*delta_p, chains::natural_impulse(model), quiet);
-  }
-  chains::ChainRecorder recorder(model, scene.record);
-  ProgressReporter progress;
-  Observers observers;
-  if (writes_series) {
-    recorder.configure(options);
-    observers.add(recorder);
-  }
-  if (!quiet && isatty(STDERR_FILENO)) {
-    if (observers.empty()) {
-      options.impulse_steps.sample_every = 2'000'000;
-      options.impulse_steps.sampled_contacts = {0};
-    }
-    observers.add(progress);
-  }
-  chains::ChainImpact impact =
-      chains::simulate_chain_impact(model, options, observers.empty() ? nullptr : &observers);
-  if (writes_series) series = recorder.series(impact);
-  return impact;
 }
 
 // summary.json on stdout, or with the time series into `out_dir`, complete or not at all.
@@ -155,10 +112,10 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (scene.adaptive() && delta_p_option)
     throw InvalidInput("--delta-p chooses the step of the impulse-step integrator; " + scene_file +
                        " has \"integrator\": \"adaptive\", whose accuracy is impact.tolerance");
-  if (!tolerance.empty() && !delta_p_option && uses_tolerance_study(scene)) {
-    tolerance_study =
-        analysis::study_tolerance(chains::impact_problem(model),
-                                  tolerance_study_options(scene, std::nullopt, "", tolerance, 8));
+  if (!tolerance.empty() && !delta_p_option && chains::uses_tolerance_study(scene)) {
+    tolerance_study = analysis::study_tolerance(
+        chains::impact_problem(model),
+        chains::tolerance_study_options(scene, {.tolerance = tolerance, .max_rows = 8}));
     if (!tolerance_study->converged)
       throw Error(scene_file + ": no tolerance down to " +
                   to_text(tolerance_study->finest_tolerance) +
@@ -166,9 +123,12 @@ int chain_command(const std::vector<std::string>& arguments) {
     scene.impact["integrator"] = "adaptive";
     scene.impact["tolerance"] = tolerance_study->finest_tolerance;
   } else if (!tolerance.empty()) {
-    study = analysis::study_convergence(
-        chains::impact_problem(model),
-        convergence_options(scene, model, delta_p_option, "--delta-p", tolerance, 12));
+    study = analysis::study_convergence(chains::impact_problem(model),
+                                        chains::convergence_options(scene, model,
+                                                                    {.tolerance = tolerance,
+                                                                     .first = delta_p_option,
+                                                                     .max_rows = 12,
+                                                                     .first_name = "--delta-p"}));
     if (!study->converged && !study->stopped.empty())
       throw Error(scene_file + ": --tolerance not met: " + study->stopped + "; no output written");
     if (!study->converged)
@@ -185,17 +145,21 @@ int chain_command(const std::vector<std::string>& arguments) {
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
   const bool writes_series = recording && !out_dir.empty();
 
-  chains::ChainImpact impact;
-  chains::ChainTimeSeries series;
-  if (lzb) {
-    impact = run_lzb(scene, model, delta_p, delta_p_option ? "--delta-p" : "impact.delta_p",
-                     writes_series, quiet, series);
-  } else {
-    chains::CompliantChainRun run =
-        chains::simulate_chain_compliant(model, scene.compliant, scene.record);
-    impact = std::move(run.impact);
-    series = std::move(run.series);
+  const std::string delta_p_field = delta_p_option ? "--delta-p" : "impact.delta_p";
+  if (delta_p) {  // refused before it is warned of
+    chains::check_delta_p(model, *delta_p, scene.impact_options().impulse_steps.max_steps,
+                          delta_p_field);
+    warn_if_coarse(*delta_p, chains::natural_impulse(model), quiet);
   }
+  ProgressReporter progress;
+  chains::ChainRun run =
+      chains::run_chain_scene(scene, model,
+                              {.delta_p = delta_p,
+                               .delta_p_field = delta_p_field,
+                               .record = writes_series,
+                               .progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr});
+  const chains::ChainImpact& impact = run.impact;
+  const chains::ChainTimeSeries& series = run.series;
   nlohmann::ordered_json summary =
       chains::chain_summary(model, impact, delta_p, writes_series ? &series : nullptr);
   summary["method"] = lzb ? "lzb" : "compliant";
@@ -203,8 +167,8 @@ int chain_command(const std::vector<std::string>& arguments) {
     summary["integrator"] = "adaptive";
     summary["tolerance"] = scene.impact_options().adaptive.tolerance;
   }
-  if (study) summary["convergence"] = convergence_json(*study);
-  if (tolerance_study) summary["convergence"] = tolerance_json(*tolerance_study);
+  if (study) summary["convergence"] = chains::convergence_json(*study);
+  if (tolerance_study) summary["convergence"] = chains::tolerance_json(*tolerance_study);
 
   if (!quiet)
     std::cerr << scene_file << ": "

@@ -5,6 +5,7 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "convergence_report.hpp"
+#include "mimpact/chains/chain_convergence.hpp"
 
 namespace mimpact::cli {
 
@@ -32,23 +33,21 @@ int converge_command(const std::vector<std::string>& arguments) {
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const chains::ChainScene scene = chains::load_chain_scene(scene_file);
   const chains::ChainModel model = chains::build_chain_model(scene);
-  const std::optional<double> from =
-      values.count("from") ? std::optional<double>(values["from"].as<double>()) : std::nullopt;
-  if (uses_tolerance_study(scene)) {
+  chains::StudyRequest request{.tolerance = tolerance, .max_rows = halvings};
+  if (values.count("from")) request.first = values["from"].as<double>();
+  if (chains::uses_tolerance_study(scene)) {
     const analysis::ToleranceStudy study = analysis::study_tolerance(
-        chains::impact_problem(model),
-        tolerance_study_options(scene, from, "--from", tolerance, halvings));
+        chains::impact_problem(model), chains::tolerance_study_options(scene, request));
     if (values.count("json"))
-      std::cout << tolerance_json(study).dump(2) << "\n";
+      std::cout << chains::tolerance_json(study).dump(2) << "\n";
     else
       print_tolerance_table(study);
     return study.converged ? 0 : 4;
   }
   const analysis::ConvergenceStudy study = analysis::study_convergence(
-      chains::impact_problem(model),
-      convergence_options(scene, model, from, "--from", tolerance, halvings));
+      chains::impact_problem(model), chains::convergence_options(scene, model, request));
   if (values.count("json"))
-    std::cout << convergence_json(study).dump(2) << "\n";
+    std::cout << chains::convergence_json(study).dump(2) << "\n";
   else
     print_convergence_table(study);
   return study.converged ? 0 : 4;

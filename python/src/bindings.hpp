@@ -1,0 +1,10 @@
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+// The parts of the `_mimpact` module, each binding one library.
+namespace mimpact::python {
+
+void bind_chains(pybind11::module_& module);
+
+}  // namespace mimpact::python

@@ -1,0 +1,153 @@
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+
+#include "bindings.hpp"
+#include "json_conversion.hpp"
+#include "mimpact/chains/chain_convergence.hpp"
+#include "mimpact/chains/chain_run.hpp"
+#include "mimpact/common/error.hpp"
+
+namespace py = pybind11;
+
+namespace mimpact::python {
+
+namespace {
+
+// What run_chain() returns: the arrays of summary.json, and the recorded time series.
+struct ChainResult {
+  Eigen::VectorXd post_impact_velocities;  // m/s, per body, strikers included
+  Eigen::VectorXd impulses;                // N s, per contact
+  Eigen::VectorXd max_forces;              // N, per contact
+  Eigen::VectorXd times_of_max_force;      // s from the first impact, per contact
+  std::string status;                      // "terminated", "step_limit" or "end_time"
+  double wall_time = 0.0;                  // s of computation
+  double duration = 0.0;                   // s, physical duration of the impacts
+  std::int64_t steps = 0;
+  std::optional<double> delta_p;   // N s, the impulse steps'; None for the other methods
+  py::object series = py::none();  // dict of arrays when the scene records, else None
+  py::dict summary;                // everything summary.json holds
+};
+
+// A scene file's path (str or os.PathLike) or a dict with the keys of a scene file.
+chains::ChainScene load_scene(const py::object& scene) {
+  if (py::isinstance<py::dict>(scene))
+    return chains::parse_chain_scene(to_json(scene, "scene").dump(), "scene");
+  if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__"))
+    return chains::load_chain_scene(
+        py::module_::import("os").attr("fspath")(scene).cast<std::string>());
+  throw InvalidInput("scene = " + py::repr(scene).cast<std::string>() +
+                     " is not allowed; allowed: a scene file's path or a dict with its keys");
+}
+
+// [sample][column] as a samples x columns array
+Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns) {
+  Eigen::MatrixXd matrix(Eigen::Index(rows.size()), Eigen::Index(columns));
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t c = 0; c < columns; ++c) matrix(Eigen::Index(r), Eigen::Index(c)) = rows[r][c];
+  return matrix;
+}
+
+py::dict series_dict(const chains::ChainTimeSeries& series) {
+  py::dict dict;
+  dict["time"] = Eigen::VectorXd(
+      Eigen::Map<const Eigen::VectorXd>(series.time.data(), Eigen::Index(series.time.size())));
+  dict["contacts"] = series.contacts;
+  dict["forces"] = table(series.force, series.contacts.size());
+  dict["bodies"] = series.bodies;
+  dict["velocities"] = table(series.velocity, series.bodies.size());
+  return dict;
+}
+
+ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p) {
+  const chains::ChainScene scene = load_scene(scene_argument);
+  chains::ChainRun run;
+  nlohmann::ordered_json summary;
+  {
+    py::gil_scoped_release computing;
+    const chains::ChainModel model = chains::build_chain_model(scene);
+    run = chains::run_chain_scene(scene, model, {.delta_p = delta_p, .delta_p_field = "delta_p"});
+    summary =
+        chains::chain_summary(model, run.impact, run.delta_p, run.recorded ? &run.series : nullptr);
+  }
+  const chains::ChainImpact& impact = run.impact;
+  if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite()))
+    throw Error("the run produced a non-finite velocity or force");
+  ChainResult result;
+  result.post_impact_velocities = impact.velocity_after;
+  result.impulses = impact.lzb.impulse;
+  result.max_forces = impact.lzb.max_force;
+  result.times_of_max_force = impact.lzb.time_of_max_force;
+  result.status = summary["status"].get<std::string>();
+  result.wall_time = impact.wall_time;
+  result.duration = impact.lzb.duration;
+  result.steps = impact.lzb.steps;
+  result.delta_p = run.delta_p;
+  if (run.recorded) result.series = series_dict(run.series);
+  result.summary = from_json(summary);
+  return result;
+}
+
+py::object converge(const py::object& scene_argument, std::vector<double> tolerance,
+                    std::optional<double> first, int rows) {
+  const chains::ChainScene scene = load_scene(scene_argument);
+  nlohmann::ordered_json study;
+  {
+    py::gil_scoped_release computing;
+    const chains::ChainModel model = chains::build_chain_model(scene);
+    study = chains::study_chain_convergence(scene, model,
+                                            {.tolerance = std::move(tolerance),
+                                             .first = first,
+                                             .max_rows = rows,
+                                             .tolerance_name = "tolerance",
+                                             .first_name = "first",
+                                             .rows_name = "rows"});
+  }
+  return from_json(study);
+}
+
+}  // namespace
+
+void bind_chains(py::module_& module) {
+  py::class_<ChainResult>(module, "ChainResult",
+                          "The outcome of run_chain(): arrays per body and per contact, the "
+                          "status, the recorded time series and the whole summary.json")
+      .def_readonly("post_impact_velocities", &ChainResult::post_impact_velocities,
+                    "m/s, per body (strikers included), after the last impact")
+      .def_readonly("impulses", &ChainResult::impulses, "N s, per contact")
+      .def_readonly("max_forces", &ChainResult::max_forces, "N, the largest force per contact")
+      .def_readonly("times_of_max_force", &ChainResult::times_of_max_force,
+                    "s from the first impact, when each contact's force peaked")
+      .def_readonly("status", &ChainResult::status,
+                    "'terminated', 'step_limit' (LZB max_steps) or 'end_time' (compliant)")
+      .def_readonly("wall_time", &ChainResult::wall_time, "s of computation")
+      .def_readonly("duration", &ChainResult::duration, "s, physical duration of the impacts")
+      .def_readonly("steps", &ChainResult::steps, "impulse steps or integration steps")
+      .def_readonly("delta_p", &ChainResult::delta_p, "N s, the impulse steps'; None otherwise")
+      .def_readonly("series", &ChainResult::series,
+                    "None, or when the scene records: dict of 'time' (s), 'contacts', 'forces' "
+                    "(N, samples x contacts), 'bodies', 'velocities' (m/s, samples x bodies)")
+      .def_readonly("summary", &ChainResult::summary, "everything summary.json holds")
+      .def("__repr__", [](const ChainResult& result) {
+        return "<ChainResult " + result.status + ": " +
+               std::to_string(result.post_impact_velocities.size()) + " bodies, " +
+               std::to_string(result.impulses.size()) + " contacts, " +
+               std::to_string(result.steps) + " steps>";
+      });
+  module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
+             py::arg("delta_p") = py::none(),
+             "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
+             "the method it chooses; delta_p (N s) overrides the scene's impulse step.");
+  module.def("converge", &converge, py::arg("scene"), py::kw_only(),
+             py::arg("tolerance") = std::vector<double>{}, py::arg("first") = py::none(),
+             py::arg("rows") = 12,
+             "The convergence study of `mimpact converge`: the adaptive integrator's tolerance "
+             "t, t/10, ... or delta_p h, h/2, ... until the post-impact velocities (and peak "
+             "forces) change by at most tolerance = [eps+, eps]; returns its rows as a dict.");
+}
+
+}  // namespace mimpact::python
