@@ -29,6 +29,8 @@ class Impacts : public kernel::SimulationObserver {
     total_.impulse = Eigen::VectorXd::Zero(m);
     total_.max_force = Eigen::VectorXd::Zero(m);
     total_.time_of_max_force = Eigen::VectorXd::Zero(m);
+    total_.work = Eigen::VectorXd::Zero(m);
+    total_.stored_energy = Eigen::VectorXd::Zero(m);
   }
 
   kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
@@ -61,6 +63,8 @@ class Impacts : public kernel::SimulationObserver {
     for (std::size_t k = 0; k < report.interactions.size(); ++k) {
       const kernel::Index j = report.interactions[k];
       total_.impulse(j) += report.impulse(Eigen::Index(k));
+      total_.work(j) += report.work(Eigen::Index(k));
+      total_.stored_energy(j) += report.stored_energy(Eigen::Index(k));
       if (report.max_force(Eigen::Index(k)) > total_.max_force(j)) {
         total_.max_force(j) = report.max_force(Eigen::Index(k));
         total_.time_of_max_force(j) = offset + report.time_of_max_force(Eigen::Index(k));
@@ -254,6 +258,10 @@ CompliantChainRun simulate_chain_compliant(const ChainModel& model, const Compli
   impact.lzb.max_force = history.max_force;
   impact.lzb.time_of_max_force = history.time_of_max_force.array() - impact.impact_time;
   impact.lzb.steps = summary.smooth_steps;
+  impact.lzb.work = history.work;
+  impact.lzb.stored_energy = history.stored_energy;
+  impact.stored_energy_at_start = history.stored_energy_at_start;
+  impact.work_of_forces = history.work_of_forces;
   impact.cut_by_end_time = !precompressed && !history.all_open;
   // a free chain's impact lasts until its last contact opens; a precompressed one's, the run
   impact.lzb.duration =
@@ -288,6 +296,45 @@ ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
   return impact;
 }
 
+double EnergyLedger::imbalance() const {
+  return kinetic_before + potential_before + work_of_forces -
+         (kinetic_after + dissipated_total + potential_left);
+}
+
+EnergyLedger energy_ledger(const ChainModel& model, const ChainImpact& impact) {
+  EnergyLedger ledger;
+  ledger.kinetic_before = kinetic_energy(model, model.velocity);
+  ledger.kinetic_after = kinetic_energy(model, impact.velocity_after);
+  const Eigen::Index m = model.contact_count();
+  const Eigen::VectorXd& stored_after = impact.lzb.stored_energy;
+  const Eigen::VectorXd stored_before = impact.stored_energy_at_start.size() == m
+                                            ? impact.stored_energy_at_start
+                                            : Eigen::VectorXd::Zero(m);
+  if (impact.lzb.work.size() != m || stored_after.size() != m)
+    throw Error("the impact's method kept no energy ledger (nonlinear relations)");
+  ledger.potential_before = stored_before.sum();
+  ledger.work_of_forces = impact.work_of_forces;
+  ledger.dissipated = impact.lzb.work + stored_before - stored_after;
+  ledger.dissipated_total = ledger.dissipated.sum();
+  ledger.potential_left = stored_after.sum();
+  return ledger;
+}
+
+namespace {
+
+nlohmann::ordered_json ledger_json(const EnergyLedger& ledger) {
+  const Eigen::VectorXd& d = ledger.dissipated;
+  return {{"kinetic_before", ledger.kinetic_before},
+          {"potential_before", ledger.potential_before},
+          {"work_of_forces", ledger.work_of_forces},
+          {"kinetic_after", ledger.kinetic_after},
+          {"dissipated", std::vector<double>(d.data(), d.data() + d.size())},
+          {"dissipated_total", ledger.dissipated_total},
+          {"potential_left", ledger.potential_left}};
+}
+
+}  // namespace
+
 nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact& impact,
                                      std::optional<double> delta_p, const ChainTimeSeries* series) {
   using json = nlohmann::ordered_json;
@@ -312,6 +359,7 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ChainImpact&
         {"residual_potential", impact.lzb.residual_energy}}},
       {"momentum",
        {{"before", momentum(model, model.velocity)}, {"after", momentum(model, after)}}},
+      {"energy", ledger_json(energy_ledger(model, impact))},
       {"wall_time", impact.wall_time},
       {"contacts", contacts}};
   if (series) add_pulses(model, *series, summary);

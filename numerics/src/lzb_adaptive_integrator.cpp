@@ -74,6 +74,7 @@ class LzbAdaptiveIntegrator::Impact {
               std::vector<internal::Crossing>& found);
   double watched_value(std::size_t member, int kind, const Watched& values) const;
   void end_segment(const State& y);
+  void account_work(const State& y);
   void apply(const std::vector<internal::Crossing>& crossings, double t);
   bool settled(const State& y);
   void sample_until(double t, ImpactObserver& observer);
@@ -104,12 +105,15 @@ class LzbAdaptiveIntegrator::Impact {
   // per contact: state at the start of the current segment
   std::vector<Phase> phase_;
   std::vector<double> delta_, impulse_, velocity_, release_level_, max_force_, time_of_max_;
+  std::vector<double> work_;    // J, the integral of -u_j dP_j so far
   std::vector<int> member_of_;  // the contact's place in members_, -1 if none
   // the segment
   std::vector<Index> members_;  // the active contacts first, then the watched ones
   std::size_t active_ = 0;
   State y_, y_at_;
   std::vector<double> rhs_velocity_, velocity_at_;
+  // per active member: its impulse increment and velocity where the work was last accounted
+  std::vector<double> accounted_impulse_, accounted_velocity_;
   Watched before_, after_, probe_;
   std::vector<Index> previous_members_;  // begin_segment's buffer
   ImpactSampler sampler_;
@@ -157,6 +161,7 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
   reset(release_level_, 0.0);
   reset(max_force_, 0.0);
   reset(time_of_max_, 0.0);
+  reset(work_, 0.0);
   reset(member_of_, -1);
   velocity_.assign(u_minus.data(), u_minus.data() + m);
   for (std::size_t j = 0; j < m; ++j)
@@ -202,6 +207,24 @@ void LzbAdaptiveIntegrator::Impact::begin_segment() {
   for (std::size_t a = 0; a < active_; ++a) y_[a] = delta_[members_[a]] / delta_scale_[members_[a]];
   rhs_velocity_.resize(members_.size());
   velocity_at_.resize(members_.size());
+  accounted_impulse_.assign(active_, 0.0);
+  accounted_velocity_.resize(active_);
+  for (std::size_t a = 0; a < active_; ++a) accounted_velocity_[a] = velocity_[members_[a]];
+}
+
+// The contacts' work since the last accounting point, by the trapezoidal rule on u: per contact
+// an approximation of the integral of -u_j dP_j, summed over them exact, since u is linear in P
+// (the kinetic energy lost to round-off, docs/model.md section 10).
+void LzbAdaptiveIntegrator::Impact::account_work(const State& y) {
+  member_velocities(y, velocity_at_);
+  for (std::size_t a = 0; a < active_; ++a) {
+    const Index j = members_[a];
+    const double impulse = y[active_ + a] * impulse_scale_[j];
+    work_[j] -=
+        0.5 * (accounted_velocity_[a] + velocity_at_[a]) * (impulse - accounted_impulse_[a]);
+    accounted_velocity_[a] = velocity_at_[a];
+    accounted_impulse_[a] = impulse;
+  }
 }
 
 void LzbAdaptiveIntegrator::Impact::member_velocities(const State& y,
@@ -385,9 +408,12 @@ LzbResult LzbAdaptiveIntegrator::Impact::finish(const Eigen::VectorXd& u_minus, 
   const std::size_t m = phase_.size();
   result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse_.data(), Index(m));
   result.velocity = u_minus + (*H_) * result.impulse;
+  result.work = Eigen::Map<const Eigen::VectorXd>(work_.data(), Index(m));
+  result.stored_energy = Eigen::VectorXd::Zero(Index(m));
   for (std::size_t j = 0; j < m; ++j) {
     if (phase_[j] == Phase::open) continue;
-    result.residual_energy += energy(Index(j), delta_[j]);
+    result.stored_energy(Index(j)) = energy(Index(j), delta_[j]);
+    result.residual_energy += result.stored_energy(Index(j));
     if (const double f = force(Index(j), delta_[j]); f > max_force_[j]) {
       max_force_[j] = f;  // still in compression at the end
       time_of_max_[j] = t;
@@ -422,6 +448,7 @@ LzbResult LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& 
   double t = 0.0;
   while (true) {
     if (steps_ + restarts >= options.max_steps) {
+      account_work(ode_.state());
       end_segment(ode_.state());
       LzbResult result = finish(u_minus, ode_.time());
       result.status = LzbStatus::step_limit;
@@ -442,6 +469,7 @@ LzbResult LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& 
                std::vector<internal::Crossing>& f) { locate(t0, t1, b, a, f); });
     if (found.empty()) {
       t = ode_.time();
+      account_work(ode_.state());
       if (observer) sample_until(t, *observer);
       if (settled(ode_.state())) {
         end_segment(ode_.state());
@@ -452,6 +480,7 @@ LzbResult LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& 
     t = found.front().time;
     if (observer) sample_until(t, *observer);
     ode_.state_at(t, y_at_);
+    account_work(y_at_);
     end_segment(y_at_);
     apply(found, t);
     const double last_step = ode_.last_step();

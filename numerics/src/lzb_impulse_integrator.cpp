@@ -178,6 +178,7 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen:
   reset(force_, 0.0);
   reset(force_hat_, 0.0);
   reset(compression_work_, 0.0);
+  reset(work_, 0.0);
   reset(max_force_, 0.0);
   reset(time_of_max_, 0.0);
   std::fill_n(in_impact_.get(), m, false);
@@ -225,6 +226,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   double* force = force_.data();
   double* force_hat = force_hat_.data();
   double* compression_work = compression_work_.data();
+  double* work = work_.data();
   double* max_force = max_force_.data();
   double* time_of_max = time_of_max_.data();
   bool* in_impact = in_impact_.get();
@@ -346,6 +348,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       const Index j = active[a];
       const double dp = step_impulse[j];
       const double mean_u = 0.5 * (u_old[j] + u[j]);
+      work[j] -= mean_u * dp;
       // compensated (Kahan) sum: a billion steps of delta_p keep P to round-off
       const double added = dp - impulse_carry[j];
       const double sum = impulse[j] + added;
@@ -388,6 +391,8 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   result.max_force = Eigen::Map<const Eigen::VectorXd>(max_force, m);
   result.time_of_max_force = Eigen::Map<const Eigen::VectorXd>(time_of_max, m);
   for (std::size_t a = 0; a < active_count; ++a) result.residual_energy += energy[active[a]];
+  result.work = Eigen::Map<const Eigen::VectorXd>(work, m);
+  result.stored_energy = Eigen::Map<const Eigen::VectorXd>(energy, m);
   result.steps = step;
   result.duration = time;
   // finite inputs can still overflow (an exponent of 1e3 puts E^(eta/(1+eta)) past double)

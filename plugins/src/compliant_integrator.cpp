@@ -54,8 +54,10 @@ struct Contact {
   std::vector<JacobianEntry> entries;  // linear relations: constant
   double anchor_gap = 0.0;             // linear relations: the gap at the bodies' anchors (m)
   bool joined = false;
-  Index slot = -1;            // of its impulse in the integrated state
-  double impulse = 0.0;       // N s, until the last commit
+  Index slot = -1;       // of its impulse in the integrated state
+  double impulse = 0.0;  // N s, until the last commit
+  // where its work was last accounted: the impulse since the last restart (N s) and u (m/s)
+  double accounted_impulse = 0.0, accounted_rate = 0.0;
   std::uint32_t version = 0;  // invalidates its pending join prediction
   bool predicted = false;
 };
@@ -99,6 +101,9 @@ struct CompliantIntegrator::State {
   GapSamples before, after;
   std::vector<double> event_gap, event_rate;
   std::vector<double> gap_now;  // m, of the joined contacts at the end of the last segment
+  // the moving coordinates' velocities and the time where the forces' work was last accounted
+  std::vector<double> accounted_velocity;
+  double accounted_time = 0.0;
 
   Body& body(Index k) { return bodies[std::size_t(k)]; }
   Contact& contact(Index j) { return contacts[std::size_t(j)]; }
@@ -193,6 +198,8 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
   max_compression_.assign(std::size_t(m), 0.0);
   history_.force.setZero(m);
   history_.max_force = history_.time_of_max_force = history_.impulse = history_.force;
+  history_.work = history_.stored_energy = history_.force;
+  history_.work_of_forces = 0.0;
   for (Index j = 0; j < m; ++j) {
     Contact& c = s.contact(j);
     c.anchor_gap = system.gap(j, s.anchor_q);
@@ -215,7 +222,21 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
     if (!s.body(k).can_fly) set_in_motion(k);
   for (Index j = 0; j < m; ++j) predict_join(j);
   restart();
+  update_stored_energy();
+  history_.stored_energy_at_start = history_.stored_energy;
   history_.all_open = contacts_open();
+}
+
+double CompliantIntegrator::contact_energy(std::size_t j, double delta) const {
+  if (!(delta > 0.0)) return 0.0;
+  const numerics::ContactLaw& law = laws_[j];
+  const double delta_max = max_compression_[j];
+  if (delta >= delta_max || law.restitution >= 1.0)
+    return law.force(delta) * delta / (1.0 + law.exponent);
+  // the unloading curve from delta_max, which reaches 0 at delta_r (contact_force)
+  const double delta_r = delta_max * (1.0 - law.restitution * law.restitution);
+  if (delta <= delta_r) return 0.0;
+  return contact_force(j, delta) * (delta - delta_r) / (1.0 + law.exponent);
 }
 
 double CompliantIntegrator::contact_force(std::size_t j, double delta) const {
@@ -371,6 +392,7 @@ void CompliantIntegrator::restart() {
   }
   s.generalized.resize(s.moving_coordinates);
   s.probe = s.y;
+  start_accounting();
   // after an event, the step the integration last took
   s.dense.restart(s.y, time_, s.dense.last_step() > 0.0 ? s.dense.last_step() : 1e-7);
 }
@@ -613,6 +635,7 @@ void CompliantIntegrator::end_segment(double end) {
   State& s = *state_;
   s.dense.state_at(end, s.y);
   time_ = end;
+  account_work(end);
   for (Index j : s.joined) {
     // a contact's force peaks where it turns, and a located turn ends a segment
     double gap, rate;
@@ -666,6 +689,63 @@ bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& r
   return true;
 }
 
+// The ledger's accounting points are the segment ends: over any part of a Dormand-Prince step
+// (its dense output included) the velocities change by M^-1 (W dP + dP_forces) with the same
+// weights as the integrated impulses, so the trapezoidal rule on u_j and v gives the kinetic
+// energy's change exactly: dT = sum_j u_j_mean dP_j + v_mean . F dt, the forces taken constant
+// over the step (the precompression is). Linear relations only: W is then constant.
+void CompliantIntegrator::start_accounting() {
+  State& s = *state_;
+  if (!s.linear) return;
+  const std::size_t impulses = 2 * std::size_t(s.moving_coordinates);
+  for (Index j : s.joined) {
+    Contact& c = s.contact(j);
+    double gap;
+    linear_gap(s, c, time_, s.y.data(), gap, c.accounted_rate);
+    c.accounted_impulse = s.y[impulses + std::size_t(c.slot)];
+  }
+  s.accounted_velocity.assign(s.y.begin() + s.moving_coordinates, s.y.begin() + impulses);
+  s.accounted_time = time_;
+}
+
+void CompliantIntegrator::account_work(double t) {
+  State& s = *state_;
+  if (!s.linear) return;
+  const Index n = s.moving_coordinates;
+  for (Index j : s.joined) {
+    Contact& c = s.contact(j);
+    double gap, rate;
+    linear_gap(s, c, t, s.y.data(), gap, rate);
+    const double impulse = s.y[std::size_t(2 * n + c.slot)];
+    history_.work(j) -= 0.5 * (c.accounted_rate + rate) * (impulse - c.accounted_impulse);
+    c.accounted_rate = rate;
+    c.accounted_impulse = impulse;
+  }
+  for (Index k : s.moving) {
+    Body& b = s.body(k);
+    if (!b.has_force) continue;
+    b.q = s.anchor_q.segment(b.offset, b.size) + Eigen::Map<const VectorXd>(&s.y[b.slot], b.size);
+    b.v = Eigen::Map<const VectorXd>(&s.y[n + b.slot], b.size);
+    system_->system(k).force(t, b.q, b.v, b.force);
+    for (Index i = 0; i < b.size; ++i) {
+      double& before = s.accounted_velocity[std::size_t(b.slot + i)];
+      history_.work_of_forces += 0.5 * (before + b.v(i)) * b.force(i) * (t - s.accounted_time);
+      before = b.v(i);
+    }
+  }
+  s.accounted_time = t;
+}
+
+void CompliantIntegrator::update_stored_energy() {
+  State& s = *state_;
+  history_.stored_energy.setZero();
+  for (Index j : s.joined) {
+    double gap = s.contact(j).anchor_gap, rate;
+    if (s.linear) linear_gap(s, s.contact(j), time_, s.y.data(), gap, rate);
+    history_.stored_energy(j) = contact_energy(std::size_t(j), -gap);
+  }
+}
+
 void CompliantIntegrator::write_back(Index k) {
   State& s = *state_;
   const Body& b = s.body(k);
@@ -687,6 +767,7 @@ void CompliantIntegrator::finish_advance(bool reached_target) {
   }
   for (Index j : s.joined)
     history_.impulse(j) = s.contact(j).impulse + s.y[std::size_t(2 * n + s.contact(j).slot)];
+  update_stored_energy();
   history_.all_open = contacts_open();
 }
 

@@ -146,6 +146,8 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   report.steps = result.steps;
   report.contact_steps = result.contact_steps;
   report.residual_energy = result.residual_energy;
+  report.work = result.work;
+  report.stored_energy = result.stored_energy;
   report.duration = result.duration;
   if (report.status == kernel::ImpactStatus::terminated) {
     report.generalized_velocity_after =

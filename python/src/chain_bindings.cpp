@@ -29,6 +29,7 @@ struct ChainResult {
   double duration = 0.0;                   // s, physical duration of the impacts
   std::int64_t steps = 0;
   std::optional<double> delta_p;   // N s, the impulse steps'; None for the other methods
+  py::dict energy;                 // the ledger (J): chains::EnergyLedger's fields
   py::object series = py::none();  // dict of arrays when the scene records, else None
   py::dict summary;                // everything summary.json holds
 };
@@ -89,6 +90,9 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
   result.delta_p = run.delta_p;
   if (run.recorded) result.series = series_dict(run.series);
   result.summary = from_json(summary);
+  result.energy = py::dict(result.summary["energy"]);
+  result.energy["dissipated"] =
+      py::module_::import("numpy").attr("asarray")(result.energy["dissipated"]);
   return result;
 }
 
@@ -128,6 +132,11 @@ void bind_chains(py::module_& module) {
       .def_readonly("duration", &ChainResult::duration, "s, physical duration of the impacts")
       .def_readonly("steps", &ChainResult::steps, "impulse steps or integration steps")
       .def_readonly("delta_p", &ChainResult::delta_p, "N s, the impulse steps'; None otherwise")
+      .def_readonly("energy", &ChainResult::energy,
+                    "the energy ledger (J): kinetic_before, potential_before, work_of_forces, "
+                    "kinetic_after, dissipated (per contact), dissipated_total, potential_left; "
+                    "before + potential_before + work_of_forces = after + dissipated_total + "
+                    "potential_left to round-off")
       .def_readonly("series", &ChainResult::series,
                     "None, or when the scene records: dict of 'time' (s), 'contacts', 'forces' "
                     "(N, samples x contacts), 'bodies', 'velocities' (m/s, samples x bodies)")

@@ -119,3 +119,27 @@ def test_bad_arguments_raise_value_error(c1):
         mimpact.converge(c1, rows=0)
     with pytest.raises(ValueError, match="no such file|cannot|open"):
         mimpact.run_chain("no/such/scene.json")
+
+
+@pytest.mark.parametrize("method", ["impulse steps", "adaptive", "compliant"])
+def test_energy_ledger_balances(method):
+    """kinetic_before (+ a precompression's potential and work) = kinetic_after + dissipated +
+    potential_left, to round-off; C3's contacts (e = 0.6) dissipate, none negatively."""
+    from conftest import read_scene
+
+    scene = read_scene("examples/scenes/c3.json")
+    if method == "adaptive":
+        scene["impact"] = {"integrator": "adaptive", "tolerance": 1e-8}
+    elif method == "compliant":
+        del scene["impact"]
+        scene["method"] = "compliant"
+    result = mimpact.run_chain(scene)
+    energy = result.energy
+    before = energy["kinetic_before"] + energy["potential_before"] + energy["work_of_forces"]
+    after = energy["kinetic_after"] + energy["dissipated_total"] + energy["potential_left"]
+    # round-off: at most a machine epsilon of the energy per step
+    assert after == pytest.approx(before, rel=max(result.steps, 100) * np.finfo(float).eps)
+    assert isinstance(energy["dissipated"], np.ndarray) and energy["dissipated"].shape == (20,)
+    assert energy["dissipated"].sum() == pytest.approx(energy["dissipated_total"], rel=1e-12)
+    assert energy["dissipated"].min() >= -1e-12 * energy["kinetic_before"]
+    assert energy["dissipated_total"] > 0.1 * energy["kinetic_before"]

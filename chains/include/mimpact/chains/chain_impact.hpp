@@ -23,6 +23,10 @@ struct ChainImpact {
   // compliant method, free chain: compliant.end_time came with contacts still closed, so the
   // velocities are those at that time, not the chain's final ones (summary status "end_time")
   bool cut_by_end_time = false;
+  // the energy ledger beyond lzb.work and lzb.stored_energy (J): the contacts' potential
+  // energy at the start (a precompression's) and the work of the bodies' own forces
+  Eigen::VectorXd stored_energy_at_start;
+  double work_of_forces = 0.0;
   // per impact, in order: when it began (s) and the body velocities just before it
   std::vector<double> impact_times;
   std::vector<Eigen::VectorXd> velocities_before;
@@ -43,6 +47,24 @@ ChainImpact simulate_chain_impact_numerics(const ChainModel& model,
                                            const numerics::LzbOptions& options,
                                            numerics::ImpactObserver* observer = nullptr);
 
+// Where the kinetic energy of a chain's impacts went (J):
+//   kinetic_before + potential_before + work_of_forces
+//     = kinetic_after + dissipated_total + potential_left,
+// to round-off for every method: each accounts the contacts' work by the trapezoidal rule over
+// its own steps, which the velocities follow exactly (docs/model.md, section 12).
+struct EnergyLedger {
+  double kinetic_before = 0.0, kinetic_after = 0.0;
+  double potential_before = 0.0;  // held by the contacts at the start (a precompression)
+  double work_of_forces = 0.0;    // done by the bodies' own forces (the precompression)
+  Eigen::VectorXd dissipated;     // per contact: its work + its potential energy before - after
+  double dissipated_total = 0.0;
+  double potential_left = 0.0;  // held by the contacts at the end (LZB: below its tolerance)
+  // the two sides' difference (J), round-off
+  double imbalance() const;
+};
+
+EnergyLedger energy_ledger(const ChainModel& model, const ChainImpact& impact);
+
 struct ChainTimeSeries;
 
 // The impact computed with the compliant contacts integrated in time (method "compliant"):
@@ -53,7 +75,8 @@ CompliantChainRun simulate_chain_compliant(const ChainModel& model, const Compli
                                            const RecordSpec& record);
 
 // The summary.json of `mimpact chain`: post-impact velocities, per-contact peak force, its
-// time and impulse, step count, duration, kinetic energy and momentum before and after.
+// time and impulse, step count, duration, kinetic energy and momentum before and after, and
+// the energy ledger ("energy": the fields of EnergyLedger).
 // With recorded time series, also the pulse of each recorded contact (Nguyen & Brogliato 2011, eqs.
 // 40-43; in a precompressed chain, of the force beyond the static one) and the wave speed through
 // each bead whose two contacts are recorded (eq. 41). Keys keep the order written here

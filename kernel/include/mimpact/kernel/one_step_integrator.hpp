@@ -37,6 +37,12 @@ struct ContactForceHistory {
   VectorXd time_of_max_force;  // s, when it was reached
   VectorXd impulse;            // N s, the force integrated since the run began
   bool all_open = true;        // no contact closed and none approaching: the contacts are done
+  // The energy ledger since the run began (J), when the integrator keeps it (linear relations):
+  // per contact the work taken from the bodies (the integral of -u_j dP_j), the potential
+  // energy held now and at the start; the work of the bodies' own forces. Kinetic energy now =
+  // at the start + work_of_forces - sum of work; contact j dissipated work + start - now.
+  VectorXd work, stored_energy, stored_energy_at_start;
+  double work_of_forces = 0.0;
 };
 
 // Moves the system through time: smooth motion between nonsmooth events, which it locates

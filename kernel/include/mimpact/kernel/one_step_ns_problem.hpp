@@ -42,8 +42,11 @@ struct ImpactReport {
   std::int64_t steps = 0;          // steps of the impact integration, if any
   std::int64_t contact_steps = 0;  // contacts updated, summed over the steps: the work
   double residual_energy = 0.0;    // J held below the termination tolerance at the end
-  double duration = 0.0;           // s, the physical duration of the impact
-  double wall_time = 0.0;          // s spent solving it
+  // per contact (J), when the law computes them: the work taken from the bodies (the integral
+  // of -u_j dP_j) and the potential energy held at the end; their difference is dissipated
+  VectorXd work, stored_energy;
+  double duration = 0.0;   // s, the physical duration of the impact
+  double wall_time = 0.0;  // s spent solving it
 };
 
 // Contact forces of the persistent contacts at one state: 0 <= lambda, g'' = H lambda + b >= 0,

@@ -79,10 +79,17 @@ struct LzbResult {
   Eigen::VectorXd max_force;          // largest force of each contact (N)
   Eigen::VectorXd time_of_max_force;  // when it occurred (s from the start of the impact)
   double residual_energy = 0.0;       // potential energy below tolerance left at the end (J)
-  std::int64_t steps = 0;             // impulse steps taken
-  std::int64_t contact_steps = 0;     // contacts updated, summed over the steps: the work
-  double duration = 0.0;              // physical duration of the impact (s)
-  std::string message;                // why the impact did not terminate; empty otherwise
+  // The energy ledger, per contact (J): the work the contact took from the bodies, the integral
+  // of -u_j dP_j, and its potential energy at the end (summing to residual_energy). Their
+  // difference is what the contact dissipated. Summed over the contacts, the work is the
+  // kinetic energy lost, to round-off: each step's work is the trapezoidal rule on u, exact
+  // for the linear dependence of u on P (du = H dP).
+  Eigen::VectorXd work;
+  Eigen::VectorXd stored_energy;
+  std::int64_t steps = 0;          // impulse steps taken
+  std::int64_t contact_steps = 0;  // contacts updated, summed over the steps: the work
+  double duration = 0.0;           // physical duration of the impact (s)
+  std::string message;             // why the impact did not terminate; empty otherwise
 };
 
 // The LZB (Liu-Zhao-Brogliato) multiple-impact law integrated in the principal impulse:
@@ -146,7 +153,7 @@ class LzbImpulseIntegrator {
   // per contact: state
   std::vector<double> u_, u_old_, energy_, impulse_, step_impulse_, force_, force_hat_;
   std::vector<double> impulse_carry_;  // the low-order bits the sum of impulse_ has lost
-  std::vector<double> compression_work_, max_force_, time_of_max_;
+  std::vector<double> compression_work_, max_force_, time_of_max_, work_;
   std::unique_ptr<bool[]> in_impact_;
   std::vector<Eigen::Index> active_;  // contacts taking part, the first ones listed
   std::size_t initially_active_ = 0;  // how many take part at the start

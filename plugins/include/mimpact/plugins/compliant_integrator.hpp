@@ -109,6 +109,12 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
 
   void evaluate(double t, const double* y, double* dydt);
   double contact_force(std::size_t j, double delta) const;
+  // the potential energy of contact j at overlap delta (J), on its loading or unloading curve
+  double contact_energy(std::size_t j, double delta) const;
+  // the contacts' work and the forces' since the last accounting point, with the state y at t
+  void account_work(double t);
+  void start_accounting();
+  void update_stored_energy();
   // every contact open, and none approaching
   bool contacts_open();
 
