@@ -72,6 +72,29 @@ TEST(ChainCommand, PrintsTheSummaryContract) {
             summary["contacts"][15]["time_of_max"].get<double>());
 }
 
+// The energy ledger: C3 (e = 0.6) loses most of its kinetic energy, all of it dissipated at the
+// contacts, balanced to round-off; the per-contact shares add up to the total.
+TEST(ChainCommand, SummaryHoldsTheEnergyLedger) {
+  const CliRun run = mimpact("chain " + scene("c3.json") + " --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto energy = nlohmann::json::parse(run.out)["energy"];
+  const double before = energy["kinetic_before"].get<double>() +
+                        energy["potential_before"].get<double>() +
+                        energy["work_of_forces"].get<double>();
+  const double after = energy["kinetic_after"].get<double>() +
+                       energy["dissipated_total"].get<double>() +
+                       energy["potential_left"].get<double>();
+  EXPECT_NEAR(after, before, 1e-12 * before);  // 3.1e-13 over its 136 725 steps
+  double total = 0.0;
+  for (const auto& d : energy["dissipated"]) {
+    EXPECT_GE(d.get<double>(), 0.0);
+    total += d.get<double>();
+  }
+  EXPECT_NEAR(total, energy["dissipated_total"].get<double>(), 1e-14);
+  EXPECT_EQ(energy["dissipated"].size(), 20u);
+  EXPECT_GT(energy["dissipated_total"].get<double>(), 0.9 * before);
+}
+
 TEST(ChainCommand, OutWritesSummaryIntoTheDirectory) {
   const fs::path dir = fs::temp_directory_path() / ("mimpact_out_" + std::to_string(::getpid()));
   fs::remove_all(dir);
