@@ -6,10 +6,40 @@ The chains of the command line from Python::
     result = mimpact.run_chain("examples/scenes/c1.json")
     result.post_impact_velocities   # NumPy array, m/s
 
-Bad input raises ValueError with the message the command line gives (the field, its value
-and what is allowed). See docs/python.md.
+and the kernel: bodies, interactions and a simulation whose integrator and problems are
+chosen by name (examples/python/bouncing_ball.py). Bad input raises ValueError with the
+message the command line gives (the field, its value and what is allowed). See
+docs/python.md.
 """
 
-from ._mimpact import ChainResult, converge, run_chain
+from ._mimpact import (
+    ChainResult,
+    ContactForces,
+    DynamicalSystem,
+    ImpactReport,
+    Interaction,
+    LagrangianDS,
+    LagrangianLinearTIDS,
+    LinearRelation,
+    LzbLaw,
+    NonSmoothDynamicalSystem,
+    NonSmoothLaw,
+    Relation,
+    RunSummary,
+    Simulation,
+    SimulationState,
+    StepReport,
+    bead_mass,
+    converge,
+    hertz_stiffness,
+    hertz_stiffness_wall,
+    run_chain,
+)
 
-__all__ = ["ChainResult", "converge", "run_chain"]
+__all__ = [
+    "ChainResult", "ContactForces", "DynamicalSystem", "ImpactReport", "Interaction",
+    "LagrangianDS", "LagrangianLinearTIDS", "LinearRelation", "LzbLaw",
+    "NonSmoothDynamicalSystem", "NonSmoothLaw", "Relation", "RunSummary", "Simulation",
+    "SimulationState", "StepReport", "bead_mass", "converge", "hertz_stiffness",
+    "hertz_stiffness_wall", "run_chain",
+]

@@ -10,7 +10,9 @@
 #include "json_conversion.hpp"
 #include "mimpact/chains/chain_convergence.hpp"
 #include "mimpact/chains/chain_run.hpp"
+#include "mimpact/chains/hertz.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/kernel/parameters.hpp"
 
 namespace py = pybind11;
 
@@ -114,9 +116,38 @@ py::object converge(const py::object& scene_argument, std::vector<double> tolera
   return from_json(study);
 }
 
+// {"density": kg/m^3, "young": Pa, "poisson": nu}, checked as a scene's "material"
+chains::Material material(const py::dict& fields, const std::string& name) {
+  return kernel::options_from<chains::Material>(
+      kernel::Parameters::parse(to_json(fields, name).dump()), {.name = name});
+}
+
 }  // namespace
 
 void bind_chains(py::module_& module) {
+  module.def(
+      "bead_mass",
+      [](double radius, const py::dict& of) {
+        return chains::bead_mass(radius, material(of, "material"));
+      },
+      py::arg("radius"), py::arg("material"),
+      "kg: (4/3) pi R^3 rho; material = {'density': kg/m^3, 'young': Pa, 'poisson': nu}");
+  module.def(
+      "hertz_stiffness",
+      [](double radius_a, const py::dict& a, double radius_b, const py::dict& b) {
+        return chains::hertz_stiffness(radius_a, material(a, "material_a"), radius_b,
+                                       material(b, "material_b"));
+      },
+      py::arg("radius_a"), py::arg("material_a"), py::arg("radius_b"), py::arg("material_b"),
+      "N/m^1.5: K = (4/3) sqrt(R*) E* of two spheres (Johnson 1985, section 4.2)");
+  module.def(
+      "hertz_stiffness_wall",
+      [](double radius, const py::dict& bead, const py::dict& wall) {
+        return chains::hertz_stiffness_wall(radius, material(bead, "bead"), material(wall, "wall"));
+      },
+      py::arg("radius"), py::arg("bead"), py::arg("wall"),
+      "N/m^1.5: the same for a sphere against a flat rigid wall (R* = R)");
+
   py::class_<ChainResult>(module, "ChainResult",
                           "The outcome of run_chain(): arrays per body and per contact, the "
                           "status, the recorded time series and the whole summary.json")

@@ -19,5 +19,6 @@ PYBIND11_MODULE(_mimpact, module) {
       PyErr_SetString(PyExc_RuntimeError, error.what());
     }
   });
+  mimpact::python::bind_kernel(module);
   mimpact::python::bind_chains(module);
 }

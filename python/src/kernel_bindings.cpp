@@ -1,0 +1,359 @@
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "json_conversion.hpp"
+#include "mimpact/common/error.hpp"
+#include "mimpact/kernel/lagrangian_ds.hpp"
+#include "mimpact/kernel/lagrangian_linear_tids.hpp"
+#include "mimpact/kernel/linear_relation.hpp"
+#include "mimpact/kernel/parameters.hpp"
+#include "mimpact/kernel/registry.hpp"
+#include "mimpact/kernel/simulation.hpp"
+#include "mimpact/plugins/lzb_law.hpp"
+#include "mimpact/plugins/register_plugins.hpp"
+
+namespace py = pybind11;
+
+namespace mimpact::python {
+
+namespace {
+
+using kernel::Index;
+using kernel::MatrixXd;
+using kernel::VectorXd;
+
+// A dict of options (None for none) as the registries' parameters.
+kernel::Parameters parameters(const py::object& options, const std::string& where) {
+  if (options.is_none()) return kernel::Parameters::object();
+  nlohmann::ordered_json json = to_json(options, where);
+  if (!json.is_object())
+    throw InvalidInput(where + " = " + json.dump() + " is not allowed; allowed: a dict of options");
+  return kernel::Parameters::parse(json.dump());
+}
+
+// The result of a Python callable as a vector of `size` values, or an error naming the callable.
+VectorXd vector_result(const py::object& value, Index size, const std::string& what) {
+  const VectorXd result = py::cast<VectorXd>(py::module_::import("numpy").attr("atleast_1d")(
+      py::module_::import("numpy").attr("asarray")(value, "float64")));
+  if (result.size() != size)
+    throw InvalidInput(what + " returned " + std::to_string(result.size()) +
+                       " values; allowed: " + std::to_string(size) + " (the system's coordinates)");
+  return result;
+}
+
+// LagrangianDS with Python callables: each call takes the GIL, which the run released.
+std::shared_ptr<kernel::LagrangianDS> lagrangian_ds(VectorXd q, VectorXd v, py::object mass,
+                                                    py::object internal_force,
+                                                    py::object external_force, std::string name) {
+  const Index n = q.size();
+  std::shared_ptr<kernel::LagrangianDS> system;
+  if (PyCallable_Check(mass.ptr())) {
+    system = std::make_shared<kernel::LagrangianDS>(
+        std::move(q), std::move(v),
+        [mass, n, name](const VectorXd& position, MatrixXd& out) {
+          py::gil_scoped_acquire python;
+          const MatrixXd matrix =
+              py::cast<MatrixXd>(py::module_::import("numpy").attr("atleast_2d")(
+                  py::module_::import("numpy").attr("asarray")(mass(position), "float64")));
+          if (matrix.rows() != n || matrix.cols() != n)
+            throw InvalidInput(
+                "system '" + name + "': mass(q) returned a " + std::to_string(matrix.rows()) +
+                " x " + std::to_string(matrix.cols()) + " matrix; allowed: " + std::to_string(n) +
+                " x " + std::to_string(n));
+          out = matrix;
+        },
+        name);
+  } else {
+    const MatrixXd matrix = py::cast<MatrixXd>(py::module_::import("numpy").attr("atleast_2d")(
+        py::module_::import("numpy").attr("asarray")(mass, "float64")));
+    system = std::make_shared<kernel::LagrangianDS>(std::move(q), std::move(v), matrix, name);
+  }
+  if (!internal_force.is_none())
+    system->set_internal_force([internal_force, n, name](double t, const VectorXd& position,
+                                                         const VectorXd& velocity, VectorXd& out) {
+      py::gil_scoped_acquire python;
+      out = vector_result(internal_force(t, position, velocity), n,
+                          "system '" + name + "': internal_force(t, q, v)");
+    });
+  if (!external_force.is_none())
+    system->set_external_force([external_force, n, name](double t, VectorXd& out) {
+      py::gil_scoped_acquire python;
+      out = vector_result(external_force(t), n, "system '" + name + "': external_force(t)");
+    });
+  return system;
+}
+
+// An observer of Python callables, each optional: on_step returns None to go on, or a string,
+// the reason to end the run.
+class PythonObserver : public kernel::SimulationObserver {
+ public:
+  py::object on_start_, on_step_, on_event_, on_impact_, on_output_, on_end_;
+
+  void on_start(const kernel::Simulation& simulation) override { call(on_start_, simulation); }
+  kernel::EventStatus on_step(const kernel::Simulation& simulation,
+                              const kernel::StepReport& step) override {
+    if (on_step_.is_none()) return kernel::EventStatus::proceed();
+    py::gil_scoped_acquire python;
+    const py::object answer = on_step_(py::cast(simulation, py::return_value_policy::reference),
+                                       py::cast(step, py::return_value_policy::reference));
+    if (answer.is_none()) return kernel::EventStatus::proceed();
+    if (!py::isinstance<py::str>(answer))
+      throw InvalidInput("on_step returned " + py::repr(answer).cast<std::string>() +
+                         "; allowed: None to go on, or a string saying why the run ends");
+    return kernel::EventStatus::terminate(answer.cast<std::string>());
+  }
+  void on_event(const kernel::Simulation& simulation, const kernel::StepReport& step) override {
+    call(on_event_, simulation, step);
+  }
+  void on_impact(const kernel::Simulation& simulation,
+                 const kernel::ImpactReport& report) override {
+    call(on_impact_, simulation, report);
+  }
+  void on_output(const kernel::Simulation& simulation) override { call(on_output_, simulation); }
+  void on_end(const kernel::Simulation& simulation) override { call(on_end_, simulation); }
+
+ private:
+  template <class... Reports>
+  void call(const py::object& callable, const kernel::Simulation& simulation,
+            const Reports&... reports) {
+    if (callable.is_none()) return;
+    py::gil_scoped_acquire python;
+    callable(py::cast(simulation, py::return_value_policy::reference),
+             py::cast(reports, py::return_value_policy::reference)...);
+  }
+};
+
+// The simulation and the observers it holds by reference.
+struct PythonSimulation {
+  std::unique_ptr<kernel::Simulation> simulation;
+  std::vector<std::unique_ptr<PythonObserver>> observers;
+};
+
+PythonSimulation make_simulation(std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                                 const std::string& integrator, const py::object& impacts,
+                                 const py::object& contact_forces,
+                                 const py::object& integrator_options,
+                                 const py::object& impact_options,
+                                 const py::object& contact_force_options,
+                                 double penetration_tolerance) {
+  plugins::register_plugins();
+  auto one_step = kernel::integrators().create(
+      integrator, parameters(integrator_options, "integrator_options"));
+  const kernel::OneStepIntegrator::Needs needs = one_step->needs();
+  // by default the problems the integrator needs; a name given where none is needed is
+  // passed on, for the Simulation to refuse by name
+  kernel::SimulationProblems problems;
+  if (!impacts.is_none() || needs.impacts)
+    problems.impacts =
+        kernel::impact_problems().create(impacts.is_none() ? "lzb" : impacts.cast<std::string>(),
+                                         parameters(impact_options, "impact_options"));
+  if (!contact_forces.is_none() || needs.contact_forces)
+    problems.contact_forces = kernel::contact_force_problems().create(
+        contact_forces.is_none() ? "acceleration-lcp" : contact_forces.cast<std::string>(),
+        parameters(contact_force_options, "contact_force_options"));
+  PythonSimulation result;
+  result.simulation = std::make_unique<kernel::Simulation>(
+      std::move(system), std::move(one_step), std::move(problems),
+      kernel::SimulationOptions{.penetration_tolerance = penetration_tolerance});
+  return result;
+}
+
+numerics::ContactLaw contact_law(const py::kwargs& fields) {
+  return kernel::options_from<numerics::ContactLaw>(parameters(fields, "LzbLaw"),
+                                                    {.name = "LzbLaw"});
+}
+
+}  // namespace
+
+void bind_kernel(py::module_& module) {
+  py::class_<kernel::DynamicalSystem, std::shared_ptr<kernel::DynamicalSystem>>(
+      module, "DynamicalSystem", "A body of the system: its coordinates q and velocities v")
+      .def_property_readonly("name", &kernel::DynamicalSystem::name)
+      .def_property_readonly("dimension", &kernel::DynamicalSystem::dimension)
+      .def_property_readonly("position", &kernel::DynamicalSystem::position)
+      .def_property_readonly("velocity", &kernel::DynamicalSystem::velocity)
+      .def("set_state", &kernel::DynamicalSystem::set_state, py::arg("position"),
+           py::arg("velocity"));
+
+  py::class_<kernel::LagrangianLinearTIDS, kernel::DynamicalSystem,
+             std::shared_ptr<kernel::LagrangianLinearTIDS>>(
+      module, "LagrangianLinearTIDS",
+      "M q'' + C q' + K q = F_ext, constant matrices (Siconos's LagrangianLinearTIDS)")
+      .def(py::init([](VectorXd q, VectorXd v, MatrixXd mass, std::optional<MatrixXd> stiffness,
+                       std::optional<MatrixXd> damping, std::optional<VectorXd> external_force,
+                       std::string name) {
+             kernel::LagrangianLinearTIDS::Matrices matrices{
+                 .mass = std::move(mass),
+                 .stiffness = stiffness.value_or(MatrixXd()),
+                 .damping = damping.value_or(MatrixXd()),
+                 .external_force = external_force.value_or(VectorXd())};
+             return std::make_shared<kernel::LagrangianLinearTIDS>(std::move(q), std::move(v),
+                                                                   std::move(matrices), name);
+           }),
+           py::arg("q"), py::arg("v"), py::arg("mass"), py::kw_only(),
+           py::arg("stiffness") = py::none(), py::arg("damping") = py::none(),
+           py::arg("external_force") = py::none(), py::arg("name") = "");
+
+  py::class_<kernel::LagrangianDS, kernel::DynamicalSystem, std::shared_ptr<kernel::LagrangianDS>>(
+      module, "LagrangianDS",
+      "M(q) q'' + F_int(t, q, v) = F_ext(t): the mass a matrix or a callable mass(q), the "
+      "forces callables returning arrays (Siconos's LagrangianDS and its sign convention)")
+      .def(py::init(&lagrangian_ds), py::arg("q"), py::arg("v"), py::arg("mass"), py::kw_only(),
+           py::arg("internal_force") = py::none(), py::arg("external_force") = py::none(),
+           py::arg("name") = "");
+
+  py::class_<kernel::Relation, std::shared_ptr<kernel::Relation>>(module, "Relation");
+  py::class_<kernel::LinearRelation, kernel::Relation, std::shared_ptr<kernel::LinearRelation>>(
+      module, "LinearRelation", "the gap g = C q + e on the stacked coordinates of the bodies")
+      .def(py::init<kernel::RowVectorXd, double>(), py::arg("C"), py::arg("e"));
+
+  py::class_<kernel::NonSmoothLaw, std::shared_ptr<kernel::NonSmoothLaw>>(module, "NonSmoothLaw");
+  py::class_<plugins::LzbLaw, kernel::NonSmoothLaw, std::shared_ptr<plugins::LzbLaw>>(
+      module, "LzbLaw",
+      "the LZB contact law: stiffness K (N/m^eta), exponent eta (1.5), restitution e (1), "
+      "model 'bi-stiffness' or 'mono-stiffness'")
+      .def(py::init([](const py::kwargs& fields) {
+        return std::make_shared<plugins::LzbLaw>(contact_law(fields));
+      }));
+
+  py::class_<kernel::Interaction, std::shared_ptr<kernel::Interaction>>(
+      module, "Interaction", "a contact: one or two bodies, its relation and its law")
+      .def(py::init<std::shared_ptr<kernel::DynamicalSystem>, std::shared_ptr<kernel::Relation>,
+                    std::shared_ptr<kernel::NonSmoothLaw>, std::string>(),
+           py::arg("first"), py::arg("relation"), py::arg("law"), py::arg("name") = "")
+      .def(py::init<std::shared_ptr<kernel::DynamicalSystem>,
+                    std::shared_ptr<kernel::DynamicalSystem>, std::shared_ptr<kernel::Relation>,
+                    std::shared_ptr<kernel::NonSmoothLaw>, std::string>(),
+           py::arg("first"), py::arg("second"), py::arg("relation"), py::arg("law"),
+           py::arg("name") = "")
+      .def_property_readonly("name", &kernel::Interaction::name)
+      .def_property_readonly("gap", &kernel::Interaction::gap, "m, at the bodies' state")
+      .def_property_readonly("velocity", &kernel::Interaction::velocity, "m/s, u = dg/dt");
+
+  py::class_<kernel::NonSmoothDynamicalSystem, std::shared_ptr<kernel::NonSmoothDynamicalSystem>>(
+      module, "NonSmoothDynamicalSystem", "the bodies and their interactions")
+      .def(py::init<>())
+      .def("add", py::overload_cast<std::shared_ptr<kernel::DynamicalSystem>>(
+                      &kernel::NonSmoothDynamicalSystem::add))
+      .def("add", py::overload_cast<std::shared_ptr<kernel::Interaction>>(
+                      &kernel::NonSmoothDynamicalSystem::add))
+      .def_property_readonly("system_count", &kernel::NonSmoothDynamicalSystem::system_count)
+      .def_property_readonly("interaction_count",
+                             &kernel::NonSmoothDynamicalSystem::interaction_count)
+      .def(
+          "system",
+          [](kernel::NonSmoothDynamicalSystem& self, Index k) -> kernel::DynamicalSystem& {
+            if (k < 0 || k >= self.system_count())
+              throw InvalidInput(invalid_value_message(
+                  "system index", k, "0 <= k < " + std::to_string(self.system_count())));
+            return self.system(k);
+          },
+          py::return_value_policy::reference_internal);
+
+  py::class_<kernel::ImpactReport>(module, "ImpactReport")
+      .def_readonly("time", &kernel::ImpactReport::time)
+      .def_readonly("interactions", &kernel::ImpactReport::interactions)
+      .def_readonly("velocity_before", &kernel::ImpactReport::velocity_before)
+      .def_readonly("velocity_after", &kernel::ImpactReport::velocity_after)
+      .def_readonly("impulse", &kernel::ImpactReport::impulse)
+      .def_readonly("max_force", &kernel::ImpactReport::max_force)
+      .def_readonly("time_of_max_force", &kernel::ImpactReport::time_of_max_force)
+      .def_readonly("work", &kernel::ImpactReport::work)
+      .def_readonly("stored_energy", &kernel::ImpactReport::stored_energy)
+      .def_readonly("steps", &kernel::ImpactReport::steps)
+      .def_readonly("duration", &kernel::ImpactReport::duration)
+      .def_readonly("wall_time", &kernel::ImpactReport::wall_time);
+  py::class_<kernel::ContactForces>(module, "ContactForces")
+      .def_readonly("time", &kernel::ContactForces::time)
+      .def_readonly("interactions", &kernel::ContactForces::interactions)
+      .def_readonly("force", &kernel::ContactForces::force)
+      .def_readonly("acceleration", &kernel::ContactForces::acceleration);
+  py::class_<kernel::StepReport>(module, "StepReport")
+      .def_readonly("time", &kernel::StepReport::time)
+      .def_readonly("event", &kernel::StepReport::event)
+      .def_readonly("closing", &kernel::StepReport::closing)
+      .def_readonly("detaching", &kernel::StepReport::detaching)
+      .def_readonly("impact", &kernel::StepReport::impact)
+      .def_readonly("contact_forces", &kernel::StepReport::contact_forces)
+      .def_readonly("smooth_steps", &kernel::StepReport::smooth_steps);
+  py::class_<kernel::RunSummary>(module, "RunSummary")
+      .def_property_readonly(
+          "status", [](const kernel::RunSummary& s) { return kernel::to_string(s.status); })
+      .def_readonly("reason", &kernel::RunSummary::reason)
+      .def_readonly("end_time", &kernel::RunSummary::end_time)
+      .def_readonly("smooth_steps", &kernel::RunSummary::smooth_steps)
+      .def_readonly("events", &kernel::RunSummary::events)
+      .def_readonly("impacts", &kernel::RunSummary::impacts)
+      .def_readonly("wall_time", &kernel::RunSummary::wall_time);
+
+  // what observers receive: the simulation's time and system, read-only
+  py::class_<kernel::Simulation>(module, "SimulationState")
+      .def_property_readonly("time", &kernel::Simulation::time)
+      .def_property_readonly(
+          "system",
+          [](const kernel::Simulation& simulation) -> const kernel::NonSmoothDynamicalSystem& {
+            return simulation.system();
+          },
+          py::return_value_policy::reference_internal);
+
+  py::class_<PythonSimulation>(
+      module, "Simulation",
+      "the generic simulation loop over a system, its integrator and problems chosen by registry "
+      "name (with their options as dicts); the problems default to the integrator's needs: "
+      "'lzb' impacts and 'acceleration-lcp' contact forces")
+      .def(py::init(&make_simulation), py::arg("system"), py::kw_only(),
+           py::arg("integrator") = "event-driven", py::arg("impacts") = py::none(),
+           py::arg("contact_forces") = py::none(), py::arg("integrator_options") = py::none(),
+           py::arg("impact_options") = py::none(), py::arg("contact_force_options") = py::none(),
+           py::arg("penetration_tolerance") = 1e-9)
+      .def(
+          "add_observer",
+          [](PythonSimulation& self, py::object on_step, py::object on_impact, py::object on_event,
+             py::object on_output, py::object on_start, py::object on_end) {
+            auto observer = std::make_unique<PythonObserver>();
+            observer->on_step_ = std::move(on_step);
+            observer->on_impact_ = std::move(on_impact);
+            observer->on_event_ = std::move(on_event);
+            observer->on_output_ = std::move(on_output);
+            observer->on_start_ = std::move(on_start);
+            observer->on_end_ = std::move(on_end);
+            self.simulation->add_observer(*observer);
+            self.observers.push_back(std::move(observer));
+          },
+          py::kw_only(), py::arg("on_step") = py::none(), py::arg("on_impact") = py::none(),
+          py::arg("on_event") = py::none(), py::arg("on_output") = py::none(),
+          py::arg("on_start") = py::none(), py::arg("on_end") = py::none(),
+          "callables (simulation, report): on_step(simulation, step) returns None to go on or a "
+          "string to end the run; on_impact(simulation, impact); on_event(simulation, step); "
+          "on_output(simulation) at scheduled times; on_start, on_end(simulation)")
+      .def(
+          "schedule_outputs",
+          [](PythonSimulation& self, double start, double interval, double end) {
+            self.simulation->schedule_outputs(start, interval, end);
+          },
+          py::arg("start"), py::arg("interval"), py::arg("end"))
+      .def(
+          "run",
+          [](PythonSimulation& self, double start, double end) {
+            return self.simulation->run(start, end);
+          },
+          py::arg("start"), py::arg("end"), py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("time",
+                             [](const PythonSimulation& self) { return self.simulation->time(); })
+      .def_property_readonly(
+          "system",
+          [](const PythonSimulation& self) -> const kernel::NonSmoothDynamicalSystem& {
+            return self.simulation->system();
+          },
+          py::return_value_policy::reference_internal);
+}
+
+}  // namespace mimpact::python
