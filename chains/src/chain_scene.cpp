@@ -168,7 +168,7 @@ numerics::LzbOptions ChainScene::lzb_options(double impulse_step) const {
   return options;
 }
 
-ChainScene load_chain_scene(const std::filesystem::path& path) {
+std::string read_scene_file(const std::filesystem::path& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))
     throw InvalidInput(path.string() + ": is a directory; allowed: a scene file (JSON)");
@@ -176,7 +176,11 @@ ChainScene load_chain_scene(const std::filesystem::path& path) {
   if (!in) throw InvalidInput(path.string() + ": cannot open the scene file for reading");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_chain_scene(text.str(), path.string());
+  return text.str();
+}
+
+ChainScene load_chain_scene(const std::filesystem::path& path) {
+  return parse_chain_scene(read_scene_file(path), path.string());
 }
 
 }  // namespace mimpact::chains

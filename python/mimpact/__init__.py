@@ -30,16 +30,19 @@ from ._mimpact import (
     SimulationState,
     StepReport,
     bead_mass,
+    check_scene,
     converge,
     hertz_stiffness,
     hertz_stiffness_wall,
+    read_scene,
     run_chain,
 )
+from .sweep import grid_points, sweep
 
 __all__ = [
     "ChainResult", "ContactForces", "DynamicalSystem", "ImpactReport", "Interaction",
     "LagrangianDS", "LagrangianLinearTIDS", "LinearRelation", "LzbLaw",
     "NonSmoothDynamicalSystem", "NonSmoothLaw", "Relation", "RunSummary", "Simulation",
-    "SimulationState", "StepReport", "bead_mass", "converge", "hertz_stiffness",
-    "hertz_stiffness_wall", "run_chain",
+    "SimulationState", "StepReport", "bead_mass", "check_scene", "converge", "grid_points",
+    "hertz_stiffness", "hertz_stiffness_wall", "read_scene", "run_chain", "sweep",
 ]

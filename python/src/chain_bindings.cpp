@@ -47,6 +47,18 @@ chains::ChainScene load_scene(const py::object& scene) {
                      " is not allowed; allowed: a scene file's path or a dict with its keys");
 }
 
+// A scene file as a dict, checked as run_chain would check it.
+py::object read_scene(const py::object& path_argument) {
+  const std::string path =
+      py::module_::import("os").attr("fspath")(path_argument).cast<std::string>();
+  const std::string text = chains::read_scene_file(path);
+  chains::parse_chain_scene(text, path);  // the scene file's messages
+  return from_json(nlohmann::ordered_json::parse(text, nullptr, true, /*ignore_comments=*/true));
+}
+
+// Parses and builds the scene without running it: the errors run_chain would raise first.
+void check_scene(const py::object& scene) { chains::build_chain_model(load_scene(scene)); }
+
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns) {
   Eigen::MatrixXd matrix(Eigen::Index(rows.size()), Eigen::Index(columns));
@@ -172,16 +184,45 @@ void bind_chains(py::module_& module) {
                     "None, or when the scene records: dict of 'time' (s), 'contacts', 'forces' "
                     "(N, samples x contacts), 'bodies', 'velocities' (m/s, samples x bodies)")
       .def_readonly("summary", &ChainResult::summary, "everything summary.json holds")
-      .def("__repr__", [](const ChainResult& result) {
-        return "<ChainResult " + result.status + ": " +
-               std::to_string(result.post_impact_velocities.size()) + " bodies, " +
-               std::to_string(result.impulses.size()) + " contacts, " +
-               std::to_string(result.steps) + " steps>";
-      });
+      .def("__repr__",
+           [](const ChainResult& result) {
+             return "<ChainResult " + result.status + ": " +
+                    std::to_string(result.post_impact_velocities.size()) + " bodies, " +
+                    std::to_string(result.impulses.size()) + " contacts, " +
+                    std::to_string(result.steps) + " steps>";
+           })
+      // pickled to cross processes: a sweep's results come back from Dask's workers
+      .def(py::pickle(
+          [](const ChainResult& r) {
+            return py::make_tuple(r.post_impact_velocities, r.impulses, r.max_forces,
+                                  r.times_of_max_force, r.status, r.wall_time, r.duration, r.steps,
+                                  r.delta_p, r.energy, r.series, r.summary);
+          },
+          [](const py::tuple& state) {
+            if (state.size() != 12) throw InvalidInput("a ChainResult pickled by another version");
+            ChainResult r;
+            r.post_impact_velocities = state[0].cast<Eigen::VectorXd>();
+            r.impulses = state[1].cast<Eigen::VectorXd>();
+            r.max_forces = state[2].cast<Eigen::VectorXd>();
+            r.times_of_max_force = state[3].cast<Eigen::VectorXd>();
+            r.status = state[4].cast<std::string>();
+            r.wall_time = state[5].cast<double>();
+            r.duration = state[6].cast<double>();
+            r.steps = state[7].cast<std::int64_t>();
+            r.delta_p = state[8].cast<std::optional<double>>();
+            r.energy = state[9].cast<py::dict>();
+            r.series = state[10];
+            r.summary = state[11].cast<py::dict>();
+            return r;
+          }));
   module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
              py::arg("delta_p") = py::none(),
              "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
              "the method it chooses; delta_p (N s) overrides the scene's impulse step.");
+  module.def("read_scene", &read_scene, py::arg("path"),
+             "a scene file (JSON, // comments allowed) as a dict, checked like run_chain()'s");
+  module.def("check_scene", &check_scene, py::arg("scene"),
+             "raises the ValueError run_chain(scene) would raise for bad input, without running");
   module.def("converge", &converge, py::arg("scene"), py::kw_only(),
              py::arg("tolerance") = std::vector<double>{}, py::arg("first") = py::none(),
              py::arg("rows") = 12,

@@ -12,14 +12,9 @@ import pytest
 
 import mimpact
 from conftest import SOURCE
+from test_examples import run_example
 
 EXAMPLES = SOURCE / "examples" / "python"
-
-
-def run_example(name):
-    environment = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
-    return subprocess.run([sys.executable, str(EXAMPLES / name)], check=True, text=True,
-                          capture_output=True, env=environment).stdout
 
 
 def cpp_example(name):

@@ -184,5 +184,7 @@ struct ChainScene {
 // source, the field, its value and what is allowed; unknown keys are errors.
 ChainScene parse_chain_scene(std::string_view text, const std::string& source);
 ChainScene load_chain_scene(const std::filesystem::path& path);
+// A scene file's text; InvalidInput when it is a directory or cannot be read.
+std::string read_scene_file(const std::filesystem::path& path);
 
 }  // namespace mimpact::chains

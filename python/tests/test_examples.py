@@ -1,0 +1,32 @@
+"""Every example of examples/python runs, and gives what it should."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+from conftest import SOURCE
+
+EXAMPLES = SOURCE / "examples" / "python"
+
+
+def run_example(name, *arguments):
+    environment = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
+    return subprocess.run([sys.executable, str(EXAMPLES / name), *arguments], check=True,
+                          text=True, capture_output=True, env=environment).stdout
+
+
+def test_every_example_is_tested():
+    tested = {"bouncing_ball.py", "bead_column.py", "taper_sweep.py", "calibrate_restitution.py"}
+    assert {path.name for path in EXAMPLES.glob("*.py")} <= tested
+
+
+def test_taper_sweep_draws_a_heat_map_that_grows_with_taper_and_restitution(tmp_path):
+    output = run_example("taper_sweep.py", "--out", str(tmp_path))
+    rows = [line.split() for line in output.splitlines()[2:-1]]
+    velocities = np.array([[float(v) for v in row[1:]] for row in rows])
+    assert velocities.shape == (8, 6)
+    # a taper concentrates the momentum into the small balls; restitution loses less of it
+    assert np.all(np.diff(velocities, axis=0) > 0) and np.all(np.diff(velocities, axis=1) > 0)
+    assert (tmp_path / "taper_sweep.png").stat().st_size > 10_000
