@@ -37,10 +37,11 @@ from ._mimpact import (
     read_scene,
     run_chain,
 )
+from .fit import FitResult, fit
 from .sweep import grid_points, sweep
 
 __all__ = [
-    "ChainResult", "ContactForces", "DynamicalSystem", "ImpactReport", "Interaction",
+    "FitResult", "fit", "ChainResult", "ContactForces", "DynamicalSystem", "ImpactReport", "Interaction",
     "LagrangianDS", "LagrangianLinearTIDS", "LinearRelation", "LzbLaw",
     "NonSmoothDynamicalSystem", "NonSmoothLaw", "Relation", "RunSummary", "Simulation",
     "SimulationState", "StepReport", "bead_mass", "check_scene", "converge", "grid_points",

@@ -30,3 +30,10 @@ def test_taper_sweep_draws_a_heat_map_that_grows_with_taper_and_restitution(tmp_
     # a taper concentrates the momentum into the small balls; restitution loses less of it
     assert np.all(np.diff(velocities, axis=0) > 0) and np.all(np.diff(velocities, axis=1) > 0)
     assert (tmp_path / "taper_sweep.png").stat().st_size > 10_000
+
+
+def test_calibration_draws_data_against_the_fitted_model(tmp_path):
+    output = run_example("calibrate_restitution.py", "--out", str(tmp_path))
+    for line in output.splitlines()[:2]:  # "<path> <value> +- <error>  (true ..., z standard ...)"
+        assert float(line.split("(true")[1].split(",")[1].split()[0]) <= 2.0
+    assert (tmp_path / "calibrate_restitution.png").stat().st_size > 10_000
