@@ -18,7 +18,8 @@ def run_example(name, *arguments):
 
 
 def test_every_example_is_tested():
-    tested = {"bouncing_ball.py", "bead_column.py", "taper_sweep.py", "calibrate_restitution.py"}
+    tested = {"bouncing_ball.py", "bead_column.py", "taper_sweep.py", "calibrate_restitution.py",
+              "coste_speed_law.py"}
     assert {path.name for path in EXAMPLES.glob("*.py")} <= tested
 
 
@@ -37,3 +38,15 @@ def test_calibration_draws_data_against_the_fitted_model(tmp_path):
     for line in output.splitlines()[:2]:  # "<path> <value> +- <error>  (true ..., z standard ...)"
         assert float(line.split("(true")[1].split(",")[1].split()[0]) <= 2.0
     assert (tmp_path / "calibrate_restitution.png").stat().st_size > 10_000
+
+
+def test_coste_speed_law_fits_the_measured_pairs(tmp_path):
+    """The model's wave meets Coste, Falcon & Fauve's speeds to 2 % with the beads' nominal
+    modulus, and to 0.1 % with the fitted one, a few percent from it."""
+    lines = run_example("coste_speed_law.py", "--out", str(tmp_path)).splitlines()
+    nominal_rms = float(lines[0].split("rms")[1].split()[0])
+    young = float(lines[1].split("E =")[1].split()[0])
+    fitted_rms = float(lines[1].split("rms")[1].split()[0])
+    assert nominal_rms < 0.02 * 800 and fitted_rms < 0.001 * 800
+    assert abs(young / 2.26e11 - 1) < 0.06
+    assert (tmp_path / "coste_speed_law.png").stat().st_size > 10_000
