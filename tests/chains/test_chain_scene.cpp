@@ -114,7 +114,7 @@ TEST(ChainScene, EveryBadFieldIsNamed) {
                   "missing field contact.stiffness"));
   EXPECT_TRUE(has(error_of(with("\"radius\": 0.004,", "")), "missing field strikers[0].radius"));
   EXPECT_TRUE(has(error_of(with("\"density\": 7780", "\"density\": \"heavy\"")),
-                  "material.density is string"));
+                  "material.density = \"heavy\" (a string) is invalid; allowed: a number"));
   EXPECT_TRUE(has(error_of(with("\"delta_p\": 1e-6", "\"delta_p\": 0")), "impact.delta_p = 0"));
   EXPECT_TRUE(
       has(error_of(with("\"poisson\": 0.3", "\"poisson\": 0.5")), "material.poisson = 0.5"));

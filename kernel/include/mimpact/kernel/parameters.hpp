@@ -33,7 +33,7 @@ class FieldReader {
   FieldReader(const Parameters& object, std::string path, const ParameterSource& source)
       : object_(object), path_(std::move(path)), source_(source) {
     if (!object_.is_object() && !object_.is_null())
-      fail(where() + " is " + std::string(object_.type_name()) + "; allowed: an object {...}");
+      fail(wrong_type(where(), object_) + "; allowed: an object {...}");
   }
 
   template <class T>
@@ -64,22 +64,29 @@ class FieldReader {
   }
 
  private:
+  // "PATH = VALUE (a TYPE) is invalid", the value cut to 60 characters
+  static std::string wrong_type(const std::string& path, const Parameters& value) {
+    std::string text = value.dump();
+    if (text.size() > 60) text = text.substr(0, 57) + "...";
+    const std::string type = value.type_name();
+    const bool vowel = type.find_first_of("aeiou") == 0;
+    return path + " = " + text + " (" + (vowel ? "an " : "a ") + type + ") is invalid";
+  }
+
   template <class T>
   void read(const Parameters& value, const std::string& path, T& out, const Allowed& allowed) {
     if constexpr (fields::Number<T>) {
       if (!value.is_number())
-        fail(path + " is " + std::string(value.type_name()) + "; allowed: a number, " +
+        fail(wrong_type(path, value) + "; allowed: a number, " +
              fields::describe(allowed, fields::Integer<T>));
       const double number = value.get<double>();
       checker().template check_number<T>(path, number, allowed);
       out = T(number);
     } else if constexpr (std::is_same_v<T, bool>) {
-      if (!value.is_boolean())
-        fail(path + " is " + std::string(value.type_name()) + "; allowed: true or false");
+      if (!value.is_boolean()) fail(wrong_type(path, value) + "; allowed: true or false");
       out = value.get<bool>();
     } else if constexpr (std::is_same_v<T, std::string>) {
-      if (!value.is_string())
-        fail(path + " is " + std::string(value.type_name()) + "; allowed: a string");
+      if (!value.is_string()) fail(wrong_type(path, value) + "; allowed: a string");
       out = value.get<std::string>();
     } else if constexpr (fields::NamedEnum<T>) {
       const auto parsed =
@@ -96,8 +103,7 @@ class FieldReader {
       if (!out) out.emplace();
       read(value, path, *out, allowed);
     } else if constexpr (fields::IsVector<T>::value) {
-      if (!value.is_array())
-        fail(path + " is " + std::string(value.type_name()) + "; allowed: an array [...]");
+      if (!value.is_array()) fail(wrong_type(path, value) + "; allowed: an array [...]");
       out.assign(value.size(), typename T::value_type{});
       for (std::size_t k = 0; k < value.size(); ++k)
         read(value[k], fields::element(path, k), out[k], allowed);
