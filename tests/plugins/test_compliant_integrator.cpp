@@ -81,6 +81,44 @@ TEST(CompliantIntegrator, TwoBodyCollisionMatchesTheClosedForm) {
   }
 }
 
+// A collision slower than relative_tolerance x the fastest initial speed (here 5e-11 m/s
+// against 1e-10 x 1 m/s) is taken as instantaneous: u+ = -e u- at once, with no integration
+// step, and its work booked in the ledger exactly as the kinetic energy changes.
+TEST(CompliantIntegrator, CollisionsBelowTheResolvedSpeedAreInstantaneous) {
+  for (double e : {1.0, 0.5}) {
+    auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
+    kernel::LagrangianLinearTIDS::Matrices unit;
+    unit.mass = Eigen::MatrixXd::Constant(1, 1, 0.03);
+    auto body = [&](double q, double v, const char* name) {
+      auto made = std::make_shared<kernel::LagrangianLinearTIDS>(
+          Eigen::VectorXd::Constant(1, q), Eigen::VectorXd::Constant(1, v), unit, name);
+      system->add(made);
+      return made;
+    };
+    body(-1.0, -1.0, "far, flying away");  // sets the speed scale: 1 m/s
+    const double u = 5e-11;                // m/s, their approach
+    auto a = body(0.0, u, "a");
+    auto b = body(0.02, 0.0, "b");  // touching: the join comes after 1e-12 m, at 0.02 s
+    numerics::ContactLaw law;
+    law.stiffness = 5e9;
+    law.restitution = e;
+    system->add(std::make_shared<kernel::Interaction>(
+        a, b, std::make_shared<kernel::LinearRelation>(Eigen::RowVector2d(-1, 1), -0.02),
+        std::make_shared<LzbLaw>(law), "slow"));
+    kernel::Simulation simulation(system, std::make_unique<CompliantIntegrator>());
+    const kernel::RunSummary summary = simulation.run(0.0, 1.0);
+    EXPECT_EQ(summary.smooth_steps, 0) << "e " << e;
+    EXPECT_NEAR(b->velocity()(0) - a->velocity()(0), e * u, 1e-15 * u) << "e " << e;
+    EXPECT_NEAR(a->velocity()(0) + b->velocity()(0), u, 1e-15 * u) << "momentum, e " << e;
+    const kernel::ContactForceHistory& history = *simulation.integrator().contact_force_history();
+    const double lost =
+        0.5 * 0.03 *
+        (u * u - a->velocity()(0) * a->velocity()(0) - b->velocity()(0) * b->velocity()(0));
+    EXPECT_NEAR(history.work(0), lost, 1e-12 * 0.5 * 0.03 * u * u) << "e " << e;
+    EXPECT_NEAR(lost, (1 - e * e) * 0.25 * 0.03 * u * u, 1e-12 * 0.03 * u * u) << "e " << e;
+  }
+}
+
 // The unloading curve F_M ((delta - delta_r) / (delta_M - delta_r))^eta gives back e^2 of the
 // compression work: two bodies leave at e times their approach speed.
 TEST(CompliantIntegrator, HystereticContactRestoresEnergeticRestitution) {

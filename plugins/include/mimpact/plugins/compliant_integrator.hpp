@@ -52,7 +52,11 @@ struct CompliantOptions {
 // displacements from where the last event left them (so a gap is a difference of small
 // numbers however far the bodies lie from the origin). A contact joins the integration when its
 // overlap reaches overlap_resolution and leaves it when the overlap falls below half of that;
-// between two bodies in free flight its join time is computed, not searched. With a nonlinear
+// between two bodies in free flight its join time is computed, not searched. A contact that
+// closes slower than ode.relative_tolerance times the fastest initial speed (behind a wave,
+// beads at rest approaching at the integration's own error speeds) collides instantly, u+ =
+// -e u-, instead of joining: its overlap lies below what the error control resolves, and
+// integrating it only fed those errors and kept ever more bodies in motion. With a nonlinear
 // relation every body and contact is integrated. It solves no impact problem: every contact is
 // compliant. Registered as "compliant".
 class CompliantIntegrator : public kernel::OneStepIntegrator {
@@ -100,6 +104,7 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   // motion or in free flight, and the integration restarted on the new set
   void commit_motion();
   void set_in_motion(kernel::Index body);
+  void fold_flight(kernel::Index body);
   void set_free(kernel::Index body);
   void join(kernel::Index contact);
   void leave(kernel::Index contact);
@@ -114,6 +119,8 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   // the contacts' work and the forces' since the last accounting point, with the state y at t
   void account_work(double t);
   void start_accounting();
+  // a closing contact slower than slow_speed_ collides instantly instead of joining
+  bool collide_instantly(kernel::Index contact);
   void update_stored_energy();
   // every contact open, and none approaching
   bool contacts_open();
@@ -124,6 +131,8 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   double time_ = 0.0;
   std::vector<numerics::ContactLaw> laws_;
   std::vector<double> max_compression_;  // delta_M per contact
+  // m/s: relative tolerance x the fastest initial speed; slower collisions are not integrated
+  double slow_speed_ = 0.0;
   kernel::ContactForceHistory history_;
 };
 
