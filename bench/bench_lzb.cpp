@@ -6,8 +6,8 @@
 
 #include "mimpact/chains/chain_impact.hpp"
 #include "mimpact/chains/chain_model.hpp"
-#include "mimpact/chains/chain_recorder.hpp"
 #include "mimpact/chains/chain_scene.hpp"
+#include "mimpact/chains/impact_recorder.hpp"
 
 namespace {
 
@@ -57,7 +57,7 @@ double c1_velocity_error(const Eigen::VectorXd& velocity) {
 
 void c1_through_kernel(benchmark::State& state, const plugins::LzbImpactOptions& options) {
   const chains::ChainModel model = c1_model();
-  chains::ChainImpact impact;
+  chains::ImpactOutcome impact;
   for (auto _ : state) {
     impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
@@ -95,7 +95,7 @@ void BM_ChainLengthAdaptive(benchmark::State& state) {
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
   options.adaptive.tolerance = 1e-6;
-  chains::ChainImpact impact;
+  chains::ImpactOutcome impact;
   for (auto _ : state) {
     impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
@@ -115,7 +115,7 @@ void BM_ChainLengthCompliant(benchmark::State& state) {
   chains::CompliantSpec spec;
   spec.tolerance = 1e-6;
   spec.end_time = 2e-4 + 3.2e-5 * double(state.range(0));
-  chains::CompliantChainRun run;
+  chains::CompliantRun run;
   for (auto _ : state) {
     run = chains::simulate_chain_compliant(model, spec, {});
     benchmark::DoNotOptimize(run.impact.velocity_after.data());

@@ -21,8 +21,8 @@
 
 #include "mimpact/chains/chain_impact.hpp"
 #include "mimpact/chains/chain_model.hpp"
-#include "mimpact/chains/chain_recorder.hpp"
 #include "mimpact/chains/chain_scene.hpp"
+#include "mimpact/chains/impact_recorder.hpp"
 
 namespace {
 
@@ -43,7 +43,7 @@ struct Case {
   std::vector<double> shares;  // delta_p / (m V) of the LZB runs
 };
 
-Outcome outcome_of(const chains::ChainImpact& impact) {
+Outcome outcome_of(const chains::ImpactOutcome& impact) {
   return {impact.velocity_after, impact.lzb.max_force, impact.lzb.steps};
 }
 

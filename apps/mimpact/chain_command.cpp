@@ -63,7 +63,7 @@ std::string method_line(const chains::ChainScene& scene, std::optional<double> d
 }
 
 // summary.json on stdout, or with the time series into `out_dir`, complete or not at all.
-void write_results(const nlohmann::ordered_json& summary, const chains::ChainTimeSeries* series,
+void write_results(const nlohmann::ordered_json& summary, const chains::TimeSeries* series,
                    const std::string& out_dir) {
   if (out_dir.empty()) {
     std::cout << summary.dump(2) << "\n";
@@ -158,8 +158,8 @@ int chain_command(const std::vector<std::string>& arguments) {
                                .delta_p_field = delta_p_field,
                                .record = writes_series,
                                .progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr});
-  const chains::ChainImpact& impact = run.impact;
-  const chains::ChainTimeSeries& series = run.series;
+  const chains::ImpactOutcome& impact = run.impact;
+  const chains::TimeSeries& series = run.series;
   nlohmann::ordered_json summary =
       chains::chain_summary(model, impact, delta_p, writes_series ? &series : nullptr);
   summary["method"] = lzb ? "lzb" : "compliant";

@@ -184,21 +184,6 @@ double natural_impulse(const ChainModel& model) {
   return smallest;
 }
 
-double impact_overlap(const ChainModel& model) {
-  double smallest = INFINITY;
-  for (Eigen::Index j = 0; j < model.contact_count(); ++j) {
-    const double u = model.u_minus(j);
-    if (!(u < 0.0)) continue;
-    const numerics::ContactLaw& law = model.laws[std::size_t(j)];
-    const double reduced_mass = 1.0 / model.H.coeff(j, j);
-    // the energy of the approach, m u^2 / 2, all stored: K delta^(1+eta) / (1 + eta)
-    smallest = std::min(
-        smallest, std::pow((1.0 + law.exponent) * reduced_mass * u * u / (2.0 * law.stiffness),
-                           1.0 / (1.0 + law.exponent)));
-  }
-  return smallest;
-}
-
 void check_delta_p(const ChainModel& model, double delta_p, std::int64_t max_steps,
                    const std::string& field) {
   const double impulse = natural_impulse(model);
@@ -219,10 +204,6 @@ double contact_position(const ChainModel& model, Eigen::Index contact) {
 
 double momentum(const ChainModel& model, const Eigen::VectorXd& velocity) {
   return model.mass.dot(velocity);
-}
-
-double kinetic_energy(const ChainModel& model, const Eigen::VectorXd& velocity) {
-  return 0.5 * model.mass.dot(velocity.cwiseAbs2());
 }
 
 }  // namespace mimpact::chains

@@ -36,7 +36,7 @@ ChainRun run_lzb(const ChainScene& scene, const ChainModel& model, const ChainRu
     check_delta_p(model, *run.delta_p, impact.impulse_steps.max_steps, options.delta_p_field);
     impact.impulse_steps = scene.lzb_options(*run.delta_p);
   }
-  ChainRecorder recorder(model, scene.record);
+  ImpactRecorder recorder(model, scene.record);
   Observers observers;
   if (record) {
     recorder.configure(impact);
@@ -62,7 +62,7 @@ ChainRun run_chain_scene(const ChainScene& scene, const ChainModel& model,
   if (options.delta_p)
     throw InvalidInput(options.delta_p_field +
                        " is the step of the LZB method; the scene has method \"compliant\"");
-  CompliantChainRun compliant = simulate_chain_compliant(model, scene.compliant, scene.record);
+  CompliantRun compliant = simulate_chain_compliant(model, scene.compliant, scene.record);
   ChainRun run;
   run.impact = std::move(compliant.impact);
   run.series = std::move(compliant.series);

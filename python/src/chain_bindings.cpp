@@ -67,7 +67,7 @@ Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t 
   return matrix;
 }
 
-py::dict series_dict(const chains::ChainTimeSeries& series) {
+py::dict series_dict(const chains::TimeSeries& series) {
   py::dict dict;
   dict["time"] = Eigen::VectorXd(
       Eigen::Map<const Eigen::VectorXd>(series.time.data(), Eigen::Index(series.time.size())));
@@ -89,7 +89,7 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
     summary =
         chains::chain_summary(model, run.impact, run.delta_p, run.recorded ? &run.series : nullptr);
   }
-  const chains::ChainImpact& impact = run.impact;
+  const chains::ImpactOutcome& impact = run.impact;
   if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite()))
     throw Error("the run produced a non-finite velocity or force");
   ChainResult result;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "../support/chain_runs.hpp"
-#include "mimpact/chains/chain_recorder.hpp"
+#include "mimpact/chains/impact_recorder.hpp"
 
 namespace mimpact::testing {
 namespace {
@@ -23,7 +23,7 @@ chains::ChainModel c1_beads(int beads) {
 
 // The wave forms within 2e-4 s and crosses a bead in 3.2e-5 s: the compliant run ends after it
 // has left (behind it the beads come to rest touching, so the contacts never all open).
-chains::CompliantChainRun run_compliant(const chains::ChainModel& model, double tolerance) {
+chains::CompliantRun run_compliant(const chains::ChainModel& model, double tolerance) {
   chains::CompliantSpec spec;
   spec.tolerance = tolerance;
   spec.end_time = 2e-4 + 3.2e-5 * double(model.body_count());
@@ -32,8 +32,8 @@ chains::CompliantChainRun run_compliant(const chains::ChainModel& model, double 
 
 TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
   const chains::ChainModel short_chain = c1_beads(300), long_chain = c1_beads(3000);
-  const chains::CompliantChainRun compliant_short = run_compliant(short_chain, 1e-6);
-  const chains::CompliantChainRun compliant_long = run_compliant(long_chain, 1e-6);
+  const chains::CompliantRun compliant_short = run_compliant(short_chain, 1e-6);
+  const chains::CompliantRun compliant_long = run_compliant(long_chain, 1e-6);
   const double compliant_ratio =
       double(compliant_long.impact.lzb.steps) / double(compliant_short.impact.lzb.steps);
   std::printf(
@@ -47,8 +47,8 @@ TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
   EXPECT_LE(compliant_long.most_bodies_in_motion, 12);
   EXPECT_EQ(compliant_long.most_bodies_in_motion, compliant_short.most_bodies_in_motion);
 
-  const chains::ChainImpact adaptive_short = run_adaptive(short_chain, 1e-6);
-  const chains::ChainImpact adaptive_long = run_adaptive(long_chain, 1e-6);
+  const chains::ImpactOutcome adaptive_short = run_adaptive(short_chain, 1e-6);
+  const chains::ImpactOutcome adaptive_long = run_adaptive(long_chain, 1e-6);
   const double adaptive_ratio = double(adaptive_long.lzb.steps) / double(adaptive_short.lzb.steps);
   const double contacts_per_step =
       double(adaptive_long.lzb.contact_steps) / double(adaptive_long.lzb.steps);
@@ -71,8 +71,8 @@ TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
 // at tolerance 1e-9 against the adaptive run at 1e-10).
 TEST(WaveCost, TheWakesSlowCollisionsCostNoIntegration) {
   const chains::ChainModel model = c1_beads(30000);
-  const chains::CompliantChainRun compliant = run_compliant(model, 1e-8);
-  const chains::ChainImpact adaptive = run_adaptive(model, 1e-9);
+  const chains::CompliantRun compliant = run_compliant(model, 1e-8);
+  const chains::ImpactOutcome adaptive = run_adaptive(model, 1e-9);
   const Eigen::Index last = model.body_count() - 1;
   std::printf(
       "30 000 beads: compliant at 1e-8, %lld steps, at most %lld bodies in motion; last "
@@ -89,7 +89,7 @@ TEST(WaveCost, TheWakesSlowCollisionsCostNoIntegration) {
 // extremes and its energy, with every velocity left to summary.json.
 TEST(WaveCost, ALongChainsReportStaysShort) {
   const chains::ChainModel model = c1_beads(3000);
-  const chains::ChainImpact impact = run_adaptive(model, 1e-6);
+  const chains::ImpactOutcome impact = run_adaptive(model, 1e-6);
   const std::string report = chains::chain_report(model, impact, "adaptive, tolerance 1e-06");
   std::printf("%s", report.c_str());
   EXPECT_LE(std::count(report.begin(), report.end(), '\n'), 10);
@@ -112,9 +112,9 @@ TEST(WaveCost, FreeFlightCostsNoStep) {
   chains::CompliantSpec spec;
   spec.tolerance = 1e-8;
   spec.end_time = 1.0 + 2e-3;
-  const chains::CompliantChainRun flown = chains::simulate_chain_compliant(far, spec, {});
+  const chains::CompliantRun flown = chains::simulate_chain_compliant(far, spec, {});
   spec.end_time = 2e-3;
-  const chains::CompliantChainRun struck = chains::simulate_chain_compliant(touching, spec, {});
+  const chains::CompliantRun struck = chains::simulate_chain_compliant(touching, spec, {});
   std::printf("striker 1 m away: %lld steps, touching: %lld steps; impact at t = %.12g s\n",
               (long long)flown.impact.lzb.steps, (long long)struck.impact.lzb.steps,
               flown.impact.impact_time);

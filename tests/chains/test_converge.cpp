@@ -10,7 +10,7 @@
 #include "../support/chain_runs.hpp"
 #include "mimpact/analysis/lzb_convergence.hpp"
 #include "mimpact/analysis/lzb_tolerance_study.hpp"
-#include "mimpact/chains/chain_recorder.hpp"
+#include "mimpact/chains/impact_recorder.hpp"
 #include "mimpact/common/error.hpp"
 
 namespace mimpact::testing {

@@ -16,9 +16,9 @@ inline chains::ChainModel scene_model(const std::string& name) {
       chains::load_chain_scene(std::string(MIMPACT_SOURCE_DIR) + "/examples/scenes/" + name));
 }
 
-inline chains::ChainImpact run_chain(const chains::ChainModel& model, double delta_p,
-                                     numerics::ImpactObserver* observer = nullptr,
-                                     std::int64_t sample_every = 0) {
+inline chains::ImpactOutcome run_chain(const chains::ChainModel& model, double delta_p,
+                                       numerics::ImpactObserver* observer = nullptr,
+                                       std::int64_t sample_every = 0) {
   numerics::LzbOptions options;
   options.delta_p = delta_p;
   options.sample_every = sample_every;
@@ -28,7 +28,7 @@ inline chains::ChainImpact run_chain(const chains::ChainModel& model, double del
 // Relative to the momentum the bodies carry, sum m |v|: the total is zero when strikers meet
 // from both sides.
 // The adaptive LZB integrator at `tolerance`, through the kernel.
-inline chains::ChainImpact run_adaptive(const chains::ChainModel& model, double tolerance) {
+inline chains::ImpactOutcome run_adaptive(const chains::ChainModel& model, double tolerance) {
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
   options.adaptive.tolerance = tolerance;
@@ -36,14 +36,14 @@ inline chains::ChainImpact run_adaptive(const chains::ChainModel& model, double 
 }
 
 inline double relative_momentum_change(const chains::ChainModel& model,
-                                       const chains::ChainImpact& impact) {
+                                       const chains::ImpactOutcome& impact) {
   const double before = chains::momentum(model, model.velocity);
   const double carried = chains::momentum(model, model.velocity.cwiseAbs());
   return std::abs(chains::momentum(model, impact.velocity_after) - before) / carried;
 }
 
 inline double kinetic_energy_ratio(const chains::ChainModel& model,
-                                   const chains::ChainImpact& impact) {
+                                   const chains::ImpactOutcome& impact) {
   return chains::kinetic_energy(model, impact.velocity_after) /
          chains::kinetic_energy(model, model.velocity);
 }

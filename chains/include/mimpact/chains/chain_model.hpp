@@ -9,6 +9,7 @@
 
 #include "mimpact/analysis/lzb_convergence.hpp"
 #include "mimpact/chains/chain_scene.hpp"
+#include "mimpact/chains/contact_model.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 
@@ -18,26 +19,12 @@ namespace mimpact::chains {
 // either end first, a rigid wall may touch the last bead. Bodies left to right (a left
 // striker, the beads, a right striker); contact i joins bodies i and i + 1,
 // g_i = x_{i+1} - x_i - (R_i + R_{i+1}); the wall's contact is last, g = x_wall - x_N - R_N.
-struct ChainModel {
+struct ChainModel : ContactModel {
   Eigen::VectorXd radius;    // m, per body
-  Eigen::VectorXd mass;      // kg, per body
   Eigen::VectorXd position;  // m, of the centres at t = 0 (first bead at 0)
-  Eigen::VectorXd velocity;  // pre-impact velocity (m/s, > 0 to the right), per body
   bool has_wall = false;
   double wall_position = 0.0;  // m, of the wall's plane
-  // N on the first bead towards the wall; the beads start at their static overlaps
-  double precompression = 0.0;
-  double largest_static_overlap = 0.0;  // m: the compliant contacts start this far in
   Eigen::Index first_bead = 0;
-  // when each striker touches its end bead (s): gap / speed, one per striker
-  std::vector<double> striker_arrivals;
-  Eigen::SparseMatrix<double> W;  // bodies x contacts, column i = grad g_i
-  Eigen::SparseMatrix<double> H;  // W^T M^-1 W, tridiagonal
-  Eigen::VectorXd u_minus;        // W^T v, pre-impact relative velocities
-  std::vector<numerics::ContactLaw> laws;
-
-  Eigen::Index body_count() const { return mass.size(); }
-  Eigen::Index contact_count() const { return Eigen::Index(laws.size()); }
 };
 
 ChainModel build_chain_model(const ChainScene& scene);
@@ -55,11 +42,6 @@ analysis::ImpactProblemData impact_problem(const ChainModel& model);
 // body, i.e. of a striker. delta_p is best chosen as a share of it.
 double natural_impulse(const ChainModel& model);
 
-// The overlap (m) that sets the contacts' scale: the largest compression of a lone contact
-// struck at the approach speed of a striker, ((1 + eta) m u^2 / (2 K))^(1 / (1 + eta)), the
-// smallest over the strikers; infinite when no contact approaches.
-double impact_overlap(const ChainModel& model);
-
 // Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
 // resolve the chain's impact: finite, below the natural impulse m V (a coarser step resolves
 // no approach, so the strikers would pass through the chain), and not so fine that the
@@ -71,8 +53,7 @@ void check_delta_p(const ChainModel& model, double delta_p, std::int64_t max_ste
 // the wall's plane for the wall's contact.
 double contact_position(const ChainModel& model, Eigen::Index contact);
 
-// Total momentum (N s) and kinetic energy (J) of the chain moving with `velocity`.
+// Total momentum (N s) of the chain moving with `velocity`.
 double momentum(const ChainModel& model, const Eigen::VectorXd& velocity);
-double kinetic_energy(const ChainModel& model, const Eigen::VectorXd& velocity);
 
 }  // namespace mimpact::chains

@@ -6,8 +6,8 @@
 
 #include "mimpact/chains/chain_impact.hpp"
 #include "mimpact/chains/chain_model.hpp"
-#include "mimpact/chains/chain_recorder.hpp"
 #include "mimpact/chains/chain_scene.hpp"
+#include "mimpact/chains/impact_recorder.hpp"
 
 // One run of a chain scene by the method it chooses: what `mimpact chain` and the Python
 // module's run_chain() share.
@@ -23,10 +23,10 @@ struct ChainRunOptions {
 };
 
 struct ChainRun {
-  ChainImpact impact;
+  ImpactOutcome impact;
   std::optional<double> delta_p;  // N s, of the impulse steps; none for the other methods
   bool recorded = false;          // series holds the scene's "record"
-  ChainTimeSeries series;
+  TimeSeries series;
 };
 
 // The LZB impact (impulse steps at delta_p, or the adaptive integrator) or the compliant

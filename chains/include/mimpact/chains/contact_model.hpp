@@ -1,0 +1,41 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "mimpact/numerics/contact_law.hpp"
+
+namespace mimpact::chains {
+
+// What the impact runs read of a granular scene, in generalized coordinates: one per bead on a
+// line (ChainModel), two per bead in the plane (packings::PackingModel). Coordinate
+// `dimension * b + k` is component k of body b's position, and body b is the kernel system b of
+// the scene's NonSmoothDynamicalSystem.
+struct ContactModel {
+  int dimension = 1;              // coordinates per body
+  Eigen::VectorXd mass;           // kg, per coordinate (a body's mass on each of its own)
+  Eigen::VectorXd velocity;       // pre-impact velocity (m/s), per coordinate
+  Eigen::SparseMatrix<double> W;  // coordinates x contacts, column j = grad g_j
+  Eigen::SparseMatrix<double> H;  // W^T M^-1 W
+  Eigen::VectorXd u_minus;        // W^T v, pre-impact relative velocities (m/s)
+  std::vector<numerics::ContactLaw> laws;
+  // when each striker touches its target (s): gap / speed, one per striker
+  std::vector<double> striker_arrivals;
+  // N: a constant force presses the bodies together; they start at their static overlaps
+  double precompression = 0.0;
+  double largest_static_overlap = 0.0;  // m: the compliant contacts start this far in
+
+  Eigen::Index body_count() const { return mass.size() / dimension; }
+  Eigen::Index contact_count() const { return Eigen::Index(laws.size()); }
+};
+
+// Kinetic energy (J) of the bodies moving with `velocity` (per coordinate).
+double kinetic_energy(const ContactModel& model, const Eigen::VectorXd& velocity);
+
+// The overlap (m) that sets the contacts' scale: the largest compression of a lone contact
+// struck at its approach speed, ((1 + eta) m u^2 / (2 K))^(1 / (1 + eta)), the smallest over
+// the approaching contacts; infinite when no contact approaches.
+double impact_overlap(const ContactModel& model);
+
+}  // namespace mimpact::chains

@@ -1,0 +1,89 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+#include "mimpact/chains/chain_scene.hpp"
+#include "mimpact/chains/contact_model.hpp"
+#include "mimpact/chains/time_series.hpp"
+#include "mimpact/kernel/non_smooth_dynamical_system.hpp"
+#include "mimpact/numerics/lzb_impulse_integrator.hpp"
+#include "mimpact/plugins/lzb_impact_problem.hpp"
+
+// The impact runs every granular scene shares (chains and planar packings): through the kernel,
+// by the LZB impact problem in the event-driven scheme or by the compliant contacts integrated
+// in time, and the energy ledger of their outcome.
+namespace mimpact::chains {
+
+// The outcome of a scene's impacts: the strikers fly to their targets (if there are gaps), the
+// shock crosses the touching beads; with strikers arriving at different times, one impact after
+// the other. Per-contact results are summed (impulses, steps) or taken at their peak over all
+// impacts, times counted from the first impact.
+struct ImpactOutcome {
+  numerics::LzbResult lzb;         // aggregated over the impacts
+  Eigen::VectorXd velocity_after;  // per coordinate (m/s), after the last impact
+  double impact_time = 0.0;        // s, when the first impact began
+  double wall_time = 0.0;          // s spent in the impact computations
+  // compliant method, free scene: compliant.end_time came with contacts still closed, so the
+  // velocities are those at that time, not the final ones (summary status "end_time")
+  bool cut_by_end_time = false;
+  // the energy ledger beyond lzb.work and lzb.stored_energy (J): the contacts' potential
+  // energy at the start (a precompression's) and the work of the bodies' own forces
+  Eigen::VectorXd stored_energy_at_start;
+  double work_of_forces = 0.0;
+  // per impact, in order: when it began (s) and the coordinates' velocities just before it
+  std::vector<double> impact_times;
+  std::vector<Eigen::VectorXd> velocities_before;
+};
+
+// Through the kernel: `system` (body b is the model's body b), the event-driven integrator, the
+// LZB impact problem; the run ends with the impact of the last striker to arrive. `observer`
+// sees the samples of every impact (as `options` says) with the model's contact indices.
+ImpactOutcome simulate_impacts(const ContactModel& model,
+                               std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                               const plugins::LzbImpactOptions& options,
+                               numerics::ImpactObserver* observer = nullptr);
+
+// The same impact on numerics alone (H of the model, no kernel), for comparisons: zero gaps
+// only.
+ImpactOutcome simulate_impact_numerics(const ContactModel& model,
+                                       const numerics::LzbOptions& options,
+                                       numerics::ImpactObserver* observer = nullptr);
+
+struct CompliantRun {
+  ImpactOutcome impact;
+  TimeSeries series;
+  Frames frames;  // every frame_every outputs, when asked for
+  // the most bodies integrated at once: the others flew in closed form
+  Eigen::Index most_bodies_in_motion = 0;
+};
+
+// The impact computed with the compliant contacts integrated in time (method "compliant"): the
+// same outcome fields (impulses, peaks and their times from the first contact; steps are the
+// integration's), the recorded time series, sampled every record.interval, and every
+// frame_every-th sample a frame of the whole scene (0: none).
+CompliantRun simulate_compliant(const ContactModel& model,
+                                std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                                const CompliantSpec& spec, const RecordSpec& record,
+                                int frame_every = 0);
+
+// Where the kinetic energy of a scene's impacts went (J):
+//   kinetic_before + potential_before + work_of_forces
+//     = kinetic_after + dissipated_total + potential_left,
+// to round-off for every method: each accounts the contacts' work by the trapezoidal rule over
+// its own steps, which the velocities follow exactly (docs/model.md, section 12).
+struct EnergyLedger {
+  double kinetic_before = 0.0, kinetic_after = 0.0;
+  double potential_before = 0.0;  // held by the contacts at the start (a precompression)
+  double work_of_forces = 0.0;    // done by the bodies' own forces (the precompression)
+  Eigen::VectorXd dissipated;     // per contact: its work + its potential energy before - after
+  double dissipated_total = 0.0;
+  double potential_left = 0.0;  // held by the contacts at the end (LZB: below its tolerance)
+  // the two sides' difference (J), round-off
+  double imbalance() const;
+};
+
+EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impact);
+
+}  // namespace mimpact::chains

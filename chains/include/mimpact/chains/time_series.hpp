@@ -1,0 +1,34 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mimpact::chains {
+
+// Time series of a scene's impacts, against the time since the first impact (s): the force of
+// the recorded contacts (N) and the velocity of the recorded bodies (m/s, `dimension`
+// components each, one after the other).
+struct TimeSeries {
+  std::vector<int> contacts, bodies;
+  int dimension = 1;  // velocity components per body
+  std::vector<double> time;
+  std::vector<std::vector<double>> force;     // [sample][recorded contact]
+  std::vector<std::vector<double>> velocity;  // [sample][dimension * recorded body + component]
+
+  // "time,F_3,F_9" then one row per sample; "time,v_0,v_20" likewise, or "time,vx_0,vy_0,..."
+  // in the plane (17 significant digits)
+  std::string forces_csv() const;
+  std::string velocities_csv() const;
+};
+
+// Every contact's force and every coordinate's velocity at a few instants of the impact, for
+// pictures of the whole scene (ParaView's time series, force chains).
+struct Frames {
+  std::vector<double> time;                   // s since the first impact
+  std::vector<std::vector<double>> force;     // [frame][contact] (N)
+  std::vector<std::vector<double>> velocity;  // [frame][coordinate] (m/s)
+
+  bool empty() const { return time.empty(); }
+};
+
+}  // namespace mimpact::chains

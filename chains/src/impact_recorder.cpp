@@ -1,0 +1,143 @@
+#include "mimpact/chains/impact_recorder.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+namespace mimpact::chains {
+
+namespace {
+
+// "time,<label 0>,<label 1>,..." then one row per sample, 17 significant digits
+std::string csv(const std::vector<double>& time, const std::vector<std::vector<double>>& rows,
+                const std::vector<std::string>& labels) {
+  std::string text = "time";
+  for (const std::string& label : labels) text += "," + label;
+  text += "\n";
+  char number[32];
+  for (std::size_t r = 0; r < time.size(); ++r) {
+    std::snprintf(number, sizeof number, "%.17g", time[r]);
+    text += number;
+    for (double value : rows[r]) {
+      std::snprintf(number, sizeof number, ",%.17g", value);
+      text += number;
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string TimeSeries::forces_csv() const {
+  std::vector<std::string> labels;
+  for (int contact : contacts) labels.push_back("F_" + std::to_string(contact));
+  return csv(time, force, labels);
+}
+
+std::string TimeSeries::velocities_csv() const {
+  static const char* const kPlanar[] = {"vx_", "vy_"};
+  std::vector<std::string> labels;
+  for (int body : bodies)
+    for (int k = 0; k < dimension; ++k)
+      labels.push_back((dimension == 2 ? kPlanar[k] : "v_") + std::to_string(body));
+  return csv(time, velocity, labels);
+}
+
+ImpactRecorder::ImpactRecorder(const ContactModel& model, RecordSpec record, int frame_every)
+    : model_(model), record_(std::move(record)), frame_every_(frame_every) {
+  for (int body : record_.bodies)
+    for (int k = 0; k < model_.dimension; ++k)
+      recorded_coordinates_.push_back(Eigen::Index(body) * model_.dimension + k);
+  std::vector<Eigen::Index> needed(record_.contacts.begin(), record_.contacts.end());
+  if (frame_every_ > 0) {
+    needed.resize(std::size_t(model_.contact_count()));
+    std::iota(needed.begin(), needed.end(), Eigen::Index(0));
+  } else {
+    // the contacts touching a body are the nonzeros of its coordinates' rows of W
+    for (Eigen::Index c = 0; c < model_.W.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(model_.W, c); it; ++it)
+        if (std::find(recorded_coordinates_.begin(), recorded_coordinates_.end(), it.row()) !=
+            recorded_coordinates_.end())
+          needed.push_back(c);
+  }
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  sampled_ = needed;
+}
+
+void ImpactRecorder::configure(plugins::LzbImpactOptions& options) const {
+  options.impulse_steps.sample_every = record_.every;
+  options.impulse_steps.sampled_contacts = sampled_;
+  options.adaptive.sample_interval = record_.interval;
+}
+
+void ImpactRecorder::observe(const numerics::ImpactSample& sample) {
+  if (sample.step == 0) ++impacts_seen_;
+  // the sample names its contacts, in increasing order; one outside this impact carries nothing
+  auto value_of = [&](std::span<const double> values, Eigen::Index contact) {
+    const auto at = std::lower_bound(sample.contacts.begin(), sample.contacts.end(), contact);
+    return at != sample.contacts.end() && *at == contact
+               ? values[std::size_t(at - sample.contacts.begin())]
+               : 0.0;
+  };
+  Sample kept{impacts_seen_ - 1, sample.time, {}, {}};
+  kept.frame = frame_every_ > 0 && samples_.size() % std::size_t(frame_every_) == 0;
+  for (Eigen::Index contact : sampled_) kept.impulse.push_back(value_of(sample.impulse, contact));
+  if (kept.frame)
+    for (Eigen::Index contact : sampled_) kept.force.push_back(value_of(sample.force, contact));
+  else
+    for (int contact : record_.contacts) kept.force.push_back(value_of(sample.force, contact));
+  samples_.push_back(std::move(kept));
+}
+
+std::vector<double> ImpactRecorder::velocities(const ImpactOutcome& impact, const Sample& sample,
+                                               const std::vector<Eigen::Index>& coordinates) const {
+  std::vector<double> velocity;
+  for (Eigen::Index coordinate : coordinates) {
+    double v = impact.velocities_before[sample.impact](coordinate);
+    for (std::size_t k = 0; k < sampled_.size(); ++k)
+      v += model_.W.coeff(coordinate, sampled_[k]) * sample.impulse[k] / model_.mass(coordinate);
+    velocity.push_back(v);
+  }
+  return velocity;
+}
+
+TimeSeries ImpactRecorder::series(const ImpactOutcome& impact) const {
+  TimeSeries series;
+  series.contacts = record_.contacts;
+  series.bodies = record_.bodies;
+  series.dimension = model_.dimension;
+  for (const Sample& sample : samples_) {
+    series.time.push_back(impact.impact_times[sample.impact] - impact.impact_time + sample.time);
+    if (sample.frame) {  // a frame holds every contact's force: keep the recorded ones
+      std::vector<double> force;
+      for (int contact : record_.contacts) force.push_back(sample.force[std::size_t(contact)]);
+      series.force.push_back(std::move(force));
+    } else {
+      series.force.push_back(sample.force);
+    }
+    series.velocity.push_back(velocities(impact, sample, recorded_coordinates_));
+  }
+  return series;
+}
+
+Frames ImpactRecorder::frames(const ImpactOutcome& impact) const {
+  Frames frames;
+  std::vector<Eigen::Index> all(std::size_t(model_.mass.size()));
+  std::iota(all.begin(), all.end(), Eigen::Index(0));
+  for (const Sample& sample : samples_) {
+    if (!sample.frame) continue;
+    frames.time.push_back(impact.impact_times[sample.impact] - impact.impact_time + sample.time);
+    frames.force.push_back(sample.force);
+    // v = v- + M^-1 W P, all coordinates at once
+    Eigen::Map<const Eigen::VectorXd> impulse(sample.impulse.data(),
+                                              Eigen::Index(sample.impulse.size()));
+    const Eigen::VectorXd v =
+        impact.velocities_before[sample.impact] + (model_.W * impulse).cwiseQuotient(model_.mass);
+    frames.velocity.emplace_back(v.data(), v.data() + v.size());
+  }
+  return frames;
+}
+
+}  // namespace mimpact::chains
