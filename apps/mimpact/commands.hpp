@@ -10,6 +10,7 @@ namespace mimpact::cli {
 int chain_command(const std::vector<std::string>& arguments);
 int lcp_command(const std::vector<std::string>& arguments);
 int nesterenko_command(const std::vector<std::string>& arguments);
+int packing_command(const std::vector<std::string>& arguments);
 int converge_command(const std::vector<std::string>& arguments);
 
 }  // namespace mimpact::cli

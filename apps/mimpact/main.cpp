@@ -15,6 +15,9 @@ constexpr const char* kUsage =
     "commands:\n"
     "  chain SCENE.json [--out DIR] [--delta-p X] [--tolerance eps+ [eps]] [--quiet]\n"
     "      the multiple impact of a granular chain; prints summary.json or writes it to DIR\n"
+    "  packing SCENE.json [--out DIR] [--delta-p X] [--quiet]\n"
+    "      the multiple impact of a planar packing of beads; prints summary.json or writes it "
+    "with\n      the geometry, time series and frames to DIR\n"
     "  lcp FILE [--max-pivots N]\n"
     "      solves the LCP of FILE (Siconos test format) with Lemke's method; prints JSON\n"
     "  converge SCENE.json [--from h] [--tolerance eps+ [eps]] [--halvings N] [--json]\n"
@@ -36,6 +39,7 @@ int main(int argc, char** argv) {
   const std::vector<std::string> arguments(argv + 2, argv + argc);
   try {
     if (command == "chain") return mimpact::cli::chain_command(arguments);
+    if (command == "packing") return mimpact::cli::packing_command(arguments);
     if (command == "lcp") return mimpact::cli::lcp_command(arguments);
     if (command == "nesterenko") return mimpact::cli::nesterenko_command(arguments);
     if (command == "converge") return mimpact::cli::converge_command(arguments);
@@ -44,7 +48,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     std::cerr << "mimpact: unknown command \"" << command
-              << "\"; allowed: chain, converge, lcp, nesterenko\n"
+              << "\"; allowed: chain, converge, lcp, nesterenko, packing\n"
               << kUsage;
     return 2;
   } catch (const boost::program_options::error& error) {

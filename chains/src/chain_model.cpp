@@ -100,14 +100,7 @@ ChainModel build_chain_model(const ChainScene& scene) {
   }
 
   std::vector<Eigen::Triplet<double>> gradients;
-  auto add_law = [&](double stiffness) {
-    numerics::ContactLaw law;
-    law.exponent = scene.contact.exponent;
-    law.restitution = scene.contact.restitution;
-    law.model = scene.contact.model;
-    law.stiffness = scene.contact.stiffness.value_or(stiffness);
-    model.laws.push_back(law);
-  };
+  auto add_law = [&](double stiffness) { model.laws.push_back(scene.contact.law(stiffness)); };
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
     gradients.emplace_back(i, i, -1.0);
     gradients.emplace_back(i + 1, i, 1.0);
@@ -174,28 +167,6 @@ analysis::ImpactProblemData impact_problem(const ChainModel& model) {
   problem.mobility = model.mass.cwiseInverse().asDiagonal() * model.W;
   problem.velocity_before = model.velocity;
   return problem;
-}
-
-double natural_impulse(const ChainModel& model) {
-  double smallest = INFINITY;
-  for (Eigen::Index i = 0; i < model.body_count(); ++i)
-    if (model.velocity(i) != 0.0)
-      smallest = std::min(smallest, model.mass(i) * std::abs(model.velocity(i)));
-  return smallest;
-}
-
-void check_delta_p(const ChainModel& model, double delta_p, std::int64_t max_steps,
-                   const std::string& field) {
-  const double impulse = natural_impulse(model);
-  if (!(delta_p > 0.0 && delta_p < impulse))
-    throw InvalidInput(invalid_value_message(field, delta_p,
-                                             "0 < delta_p < the striker's momentum m V = " +
-                                                 to_text(impulse) + " N s (best <= 1e-3 m V)"));
-  if (impulse / delta_p > double(max_steps))
-    throw InvalidInput(
-        invalid_value_message(field, delta_p,
-                              ">= m V / max_steps = " + to_text(impulse / double(max_steps)) +
-                                  " N s: the impact takes at least m V / delta_p impulse steps"));
 }
 
 double contact_position(const ChainModel& model, Eigen::Index contact) {

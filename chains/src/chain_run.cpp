@@ -28,12 +28,8 @@ ChainRun run_lzb(const ChainScene& scene, const ChainModel& model, const ChainRu
   ChainRun run;
   plugins::LzbImpactOptions impact = scene.impact_options();
   if (!scene.adaptive()) {
-    run.delta_p = options.delta_p ? options.delta_p : scene.delta_p;
-    if (!run.delta_p)
-      throw InvalidInput(
-          "missing field impact.delta_p (the impulse steps' principal step, N s); or choose "
-          "\"integrator\": \"adaptive\" with a tolerance");
-    check_delta_p(model, *run.delta_p, impact.impulse_steps.max_steps, options.delta_p_field);
+    run.delta_p = impulse_step(model, options.delta_p, scene.delta_p,
+                               impact.impulse_steps.max_steps, options.delta_p_field);
     impact.impulse_steps = scene.lzb_options(*run.delta_p);
   }
   ImpactRecorder recorder(model, scene.record);

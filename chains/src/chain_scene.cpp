@@ -1,5 +1,6 @@
 #include "mimpact/chains/chain_scene.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -15,40 +16,6 @@ using nlohmann::json;
 // rows of forces.csv a compliant run may write: 1e8 rows of a few contacts are gigabytes
 constexpr double kMaxRecordedSamples = 1e8;
 
-class SceneChecks {
- public:
-  explicit SceneChecks(const std::string& source) : source_(source) {}
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InvalidInput(source_ + ": " + what);
-  }
-
- private:
-  const std::string& source_;
-};
-
-// A bead, striker or wall without "material" takes the scene's: copied into the document
-// before it is read, so that the one field list reads every body alike.
-void lend_material(json& document, const SceneChecks& checks) {
-  if (!document.is_object()) return;
-  auto lend = [&](json& body, const std::string& path) {
-    if (!body.is_object() || body.contains("material")) return;
-    if (!document.contains("material"))
-      checks.fail("missing field " + path +
-                  ".material (and no top-level \"material\" to fall back on)");
-    body["material"] = document["material"];
-  };
-  auto each = [&](json* list, const std::string& path) {
-    if (!list || !list->is_array()) return;
-    for (std::size_t k = 0; k < list->size(); ++k)
-      lend((*list)[k], path + "[" + std::to_string(k) + "]");
-  };
-  if (document.contains("chain") && document["chain"].is_object() &&
-      document["chain"].contains("segments"))
-    each(&document["chain"]["segments"], "chain.segments");
-  if (document.contains("strikers")) each(&document["strikers"], "strikers");
-  if (document.contains("wall")) lend(document["wall"], "wall");
-}
-
 // What the field lists cannot say alone: counts, pairings, and fields that depend on others.
 void check_bodies(const ChainScene& scene, const SceneChecks& checks) {
   if (scene.chain.segments.empty())
@@ -62,24 +29,7 @@ void check_bodies(const ChainScene& scene, const SceneChecks& checks) {
     checks.fail(
         "a right striker and a wall: the wall touches the last bead on the right; allowed: one "
         "of them");
-  if (!scene.contact.stiffness && scene.contact.exponent != 1.5)
-    checks.fail(
-        "missing field contact.stiffness: the Hertz stiffness holds for exponent 1.5 only, and "
-        "contact.exponent = " +
-        to_text(scene.contact.exponent));
-}
-
-// "impact" is read as the "lzb" impact problem reads its parameters; delta_p is kept apart.
-void split_delta_p(ChainScene& scene, const std::string& source) {
-  const plugins::LzbImpactOptions options = kernel::options_from<plugins::LzbImpactOptions>(
-      scene.impact, {.name = source, .path = "impact", .unknown = "key"});
-  if (!scene.impact.contains("delta_p")) return;
-  if (options.integrator == plugins::LzbIntegrator::adaptive)
-    throw InvalidInput(source + ": impact.delta_p = " + to_text(options.impulse_steps.delta_p) +
-                       " is the step of the impulse-step integrator; allowed with "
-                       "\"integrator\": \"adaptive\": impact.tolerance");
-  scene.delta_p = options.impulse_steps.delta_p;
-  scene.impact.erase("delta_p");
+  scene.contact.check(checks);
 }
 
 void check_record(const ChainScene& scene, const SceneChecks& checks) {
@@ -120,6 +70,64 @@ void check_precompression(const ChainScene& scene, const SceneChecks& checks) {
 
 }  // namespace
 
+void lend_material(nlohmann::json& document, std::initializer_list<const char*> bodies,
+                   const std::string& source) {
+  if (!document.is_object()) return;
+  auto lend = [&](json& body, const std::string& path) {
+    if (!body.is_object() || body.contains("material")) return;
+    if (!document.contains("material"))
+      throw InvalidInput(source + ": missing field " + path +
+                         ".material (and no top-level \"material\" to fall back on)");
+    body["material"] = document["material"];
+  };
+  for (const char* pointer : bodies) {
+    const json::json_pointer at(pointer);
+    if (!document.contains(at)) continue;
+    // "/chain/segments" is named chain.segments in messages
+    std::string path = std::string(pointer).substr(1);
+    std::replace(path.begin(), path.end(), '/', '.');
+    json& bodies_at = document[at];
+    if (!bodies_at.is_array()) {
+      lend(bodies_at, path);
+      continue;
+    }
+    for (std::size_t k = 0; k < bodies_at.size(); ++k)
+      lend(bodies_at[k], path + "[" + std::to_string(k) + "]");
+  }
+}
+
+void ContactSpec::check(const SceneChecks& checks) const {
+  if (!stiffness && exponent != 1.5)
+    checks.fail(
+        "missing field contact.stiffness: the Hertz stiffness holds for exponent 1.5 only, and "
+        "contact.exponent = " +
+        to_text(exponent));
+}
+
+double impulse_step(const ContactModel& model, std::optional<double> chosen,
+                    std::optional<double> scene_value, std::int64_t max_steps,
+                    const std::string& field) {
+  const std::optional<double> delta_p = chosen ? chosen : scene_value;
+  if (!delta_p)
+    throw InvalidInput(
+        "missing field impact.delta_p (the impulse steps' principal step, N s); or choose "
+        "\"integrator\": \"adaptive\" with a tolerance");
+  check_delta_p(model, *delta_p, max_steps, field);
+  return *delta_p;
+}
+
+std::optional<double> take_delta_p(kernel::Parameters& impact, const std::string& source) {
+  const plugins::LzbImpactOptions options = kernel::options_from<plugins::LzbImpactOptions>(
+      impact, {.name = source, .path = "impact", .unknown = "key"});
+  if (!impact.contains("delta_p")) return std::nullopt;
+  if (options.integrator == plugins::LzbIntegrator::adaptive)
+    throw InvalidInput(source + ": impact.delta_p = " + to_text(options.impulse_steps.delta_p) +
+                       " is the step of the impulse-step integrator; allowed with "
+                       "\"integrator\": \"adaptive\": impact.tolerance");
+  impact.erase("delta_p");
+  return options.impulse_steps.delta_p;
+}
+
 ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
   const SceneChecks checks(source);
   json document;
@@ -128,11 +136,11 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
   } catch (const json::parse_error& error) {
     checks.fail(std::string("malformed JSON: ") + error.what());
   }
-  lend_material(document, checks);
+  lend_material(document, {"/chain/segments", "/strikers", "/wall"}, source);
   ChainScene scene;
   kernel::read_fields(document, scene, {.name = source, .unknown = "key", .top = "the top level"});
   check_bodies(scene, checks);
-  split_delta_p(scene, source);
+  scene.delta_p = take_delta_p(scene.impact, source);
   check_record(scene, checks);
   check_precompression(scene, checks);
   return scene;
@@ -150,11 +158,16 @@ const StrikerSpec* ChainScene::striker(Side side) const {
   return nullptr;
 }
 
-plugins::LzbImpactOptions ChainScene::impact_options() const {
+plugins::LzbImpactOptions lzb_impact_options(const kernel::Parameters& impact,
+                                             std::optional<double> delta_p) {
   plugins::LzbImpactOptions options =
       kernel::options_from<plugins::LzbImpactOptions>(impact, {.name = "impact"});
   if (delta_p) options.impulse_steps.delta_p = *delta_p;
   return options;
+}
+
+plugins::LzbImpactOptions ChainScene::impact_options() const {
+  return lzb_impact_options(impact, delta_p);
 }
 
 bool ChainScene::adaptive() const {

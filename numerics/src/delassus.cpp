@@ -26,8 +26,7 @@ Delassus::Delassus(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& 
       throw InvalidInput(invalid_value_message("inverse_mass(" + std::to_string(i) + ")",
                                                inverse_mass(i), "a finite value >= 0 (1/kg)"));
   mobility_ = inverse_mass.asDiagonal() * W;
-  H_ = W.transpose() * mobility_;
-  H_.makeCompressed();
+  assemble(W);
 }
 
 Delassus::Delassus(const Eigen::SparseMatrix<double>& W, const Eigen::SparseMatrix<double>& mass) {
@@ -38,7 +37,14 @@ Delassus::Delassus(const Eigen::SparseMatrix<double>& W, const Eigen::SparseMatr
         "the mass matrix is not symmetric positive definite (CHOLMOD could not "
         "factorize it); allowed: positive masses");
   mobility_ = cholesky.solve(W);
+  assemble(W);
+}
+
+void Delassus::assemble(const Eigen::SparseMatrix<double>& W) {
   H_ = W.transpose() * mobility_;
+  // contacts whose directions are orthogonal at a shared body (a square packing's row and
+  // column) do not couple: no entry, so that the impact integrators never visit the pair
+  H_.prune(0.0);
   H_.makeCompressed();
 }
 

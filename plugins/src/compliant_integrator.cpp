@@ -95,6 +95,9 @@ struct CompliantIntegrator::State {
   std::uint32_t stamp = 0;
   std::priority_queue<PredictedJoin, std::vector<PredictedJoin>, std::greater<>> predictions;
   Index pending_predictions = 0;
+  // the contact of the event handled last: its crossing, seen again at the start of the next
+  // segment through round-off of the restarted state, is not an event
+  Index last_event = -1;
   // right-hand side workspace
   VectorXd generalized;
   VectorXd q_all, v_all;  // nonlinear relations: every coordinate
@@ -595,6 +598,12 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
       const bool joined = s.contact(j).joined;
       const double g0 = before.gap[w], g1 = after.gap[w];
       EventKind kind = EventKind::none;
+      if (!joined && g0 <= -s.join_overlap && before.rate[w] < 0.0) {
+        // crossed at the time of the event just handled (within its tolerance), so already
+        // past the threshold where the segment starts: it joins there
+        found.push_back({long(j), int(EventKind::joining), t0});
+        continue;
+      }
       if (!joined && g0 > -s.join_overlap && g1 <= -s.join_overlap) {
         kind = EventKind::joining;
       } else if (joined && g0 < -s.leave_overlap && g1 >= -s.leave_overlap) {
@@ -611,9 +620,10 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
           },
           t0, t1, signed_value(kind, g0, before.rate[w]), signed_value(kind, g1, after.rate[w]),
           options_.ode.event_tolerance);
-      // an event at the start of the segment is the one just handled, seen again through
-      // round-off of the restarted state
-      if (bracket.upper <= a + options_.ode.event_tolerance) continue;
+      // the event just handled, seen again through round-off of the restarted state; another
+      // contact crossing at the same time (a symmetric strike loads two contacts at once) is
+      // an event of its own
+      if (j == s.last_event && bracket.upper <= a + options_.ode.event_tolerance) continue;
       found.push_back({long(j), int(kind), bracket.upper});
     }
   };
@@ -669,6 +679,7 @@ void CompliantIntegrator::end_segment(double end) {
 
 bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& report) {
   State& s = *state_;
+  s.last_event = event.contact;
   const std::size_t i = std::size_t(event.contact);
   if (event.kind == EventKind::turning) {
     // e < 1 unloads along another curve from here; for e = 1 the restart keeps the step

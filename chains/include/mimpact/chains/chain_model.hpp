@@ -38,17 +38,6 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_chain_system(const Chain
 // than one impact).
 analysis::ImpactProblemData impact_problem(const ChainModel& model);
 
-// The impulse that sets the impact's scale (N s): the smallest momentum m |v| of a moving
-// body, i.e. of a striker. delta_p is best chosen as a share of it.
-double natural_impulse(const ChainModel& model);
-
-// Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
-// resolve the chain's impact: finite, below the natural impulse m V (a coarser step resolves
-// no approach, so the strikers would pass through the chain), and not so fine that the
-// impact needs more than max_steps steps (it takes at least m V / delta_p).
-void check_delta_p(const ChainModel& model, double delta_p, std::int64_t max_steps,
-                   const std::string& field);
-
 // Where contact j touches at t = 0 (m), from the centre of the first body: x_j + R_j, or
 // the wall's plane for the wall's contact.
 double contact_position(const ChainModel& model, Eigen::Index contact);

@@ -2,13 +2,17 @@
 
 #include <array>
 #include <filesystem>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "mimpact/chains/contact_model.hpp"
 #include "mimpact/chains/hertz.hpp"
+#include "mimpact/common/error.hpp"
 #include "mimpact/common/fields.hpp"
 #include "mimpact/kernel/parameters.hpp"
 #include "mimpact/numerics/contact_law.hpp"
@@ -108,6 +112,18 @@ struct CompliantSpec {
   }
 };
 
+// Throws InvalidInput naming the scene file: "SOURCE: what".
+class SceneChecks {
+ public:
+  explicit SceneChecks(const std::string& source) : source_(source) {}
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InvalidInput(source_ + ": " + what);
+  }
+
+ private:
+  const std::string& source_;
+};
+
 struct ContactSpec {
   numerics::ComplianceModel model = numerics::ComplianceModel::bi_stiffness;
   double exponent = 1.5;
@@ -123,6 +139,16 @@ struct ContactSpec {
           within(0.0, 10.0, "1 linear, 3/2 Hertz", true).described("0 < eta <= 10"));
     field("restitution", self.restitution, within(0.0, 1.0).described("0 <= e <= 1"));
     field("stiffness", self.stiffness, positive("N/m^exponent"));
+  }
+
+  // Hertz's stiffness needs exponent 3/2: another exponent needs its stiffness.
+  void check(const SceneChecks& checks) const;
+  // The law of a contact whose Hertz stiffness is `hertz` (N/m^1.5): K the scene's, or Hertz's.
+  numerics::ContactLaw law(double hertz) const {
+    return {.stiffness = stiffness.value_or(hertz),
+            .exponent = exponent,
+            .restitution = restitution,
+            .model = model};
   }
 };
 
@@ -179,6 +205,25 @@ struct ChainScene {
   bool adaptive() const;
   numerics::LzbOptions lzb_options(double impulse_step) const;
 };
+
+// Copies the top-level "material" of a scene document into every body that names none, so
+// that one field list reads every body alike. `bodies` are JSON pointers to a body or an array
+// of bodies ("/chain/segments"); throws InvalidInput naming the body when it needs the
+// top-level material and there is none.
+void lend_material(nlohmann::json& document, std::initializer_list<const char*> bodies,
+                   const std::string& source);
+
+// Reads "impact" as the "lzb" impact problem reads its parameters (InvalidInput naming `source`
+// on a bad one) and takes delta_p out of it: the command line may choose it instead.
+std::optional<double> take_delta_p(kernel::Parameters& impact, const std::string& source);
+// The impulse steps' delta_p (N s): `chosen` (the command line's) or else the scene's, checked
+// against the model (check_delta_p, naming `field`); InvalidInput when there is none.
+double impulse_step(const ContactModel& model, std::optional<double> chosen,
+                    std::optional<double> scene_value, std::int64_t max_steps,
+                    const std::string& field);
+// The "lzb" impact problem's options of "impact", with delta_p when given.
+plugins::LzbImpactOptions lzb_impact_options(const kernel::Parameters& impact,
+                                             std::optional<double> delta_p);
 
 // Parses and validates a scene (JSON, comments allowed). Throws InvalidInput naming the
 // source, the field, its value and what is allowed; unknown keys are errors.

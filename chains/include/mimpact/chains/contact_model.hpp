@@ -2,6 +2,8 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "mimpact/numerics/contact_law.hpp"
@@ -37,5 +39,16 @@ double kinetic_energy(const ContactModel& model, const Eigen::VectorXd& velocity
 // struck at its approach speed, ((1 + eta) m u^2 / (2 K))^(1 / (1 + eta)), the smallest over
 // the approaching contacts; infinite when no contact approaches.
 double impact_overlap(const ContactModel& model);
+
+// The impulse that sets the impact's scale (N s): the smallest momentum m |v| of a moving
+// body, i.e. of a striker. delta_p is best chosen as a share of it.
+double natural_impulse(const ContactModel& model);
+
+// Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
+// resolve the impact: finite, below the natural impulse m V (a coarser step resolves no
+// approach, so the strikers would pass through their targets), and not so fine that the
+// impact needs more than max_steps steps (it takes at least m V / delta_p).
+void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_steps,
+                   const std::string& field);
 
 }  // namespace mimpact::chains

@@ -21,6 +21,8 @@ class Delassus {
   const Eigen::SparseMatrix<double>& mobility() const { return mobility_; }
 
  private:
+  void assemble(const Eigen::SparseMatrix<double>& W);  // H from W and the mobility
+
   Eigen::SparseMatrix<double> H_;
   Eigen::SparseMatrix<double> mobility_;
 };

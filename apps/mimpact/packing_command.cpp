@@ -1,0 +1,85 @@
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <optional>
+
+#include "command_line.hpp"
+#include "commands.hpp"
+#include "mimpact/common/error.hpp"
+#include "mimpact/packings/packing_run.hpp"
+#include "output_directory.hpp"
+
+namespace mimpact::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+// Everything a run writes into --out: complete or not at all.
+std::map<std::string, std::string> output_files(const nlohmann::ordered_json& summary,
+                                                const packings::PackingModel& model,
+                                                const packings::PackingRun& run) {
+  std::map<std::string, std::string> files{{"summary.json", summary.dump(2) + "\n"},
+                                           {"bodies.csv", packings::bodies_csv(model)},
+                                           {"contacts.csv", packings::contacts_csv(model)}};
+  if (run.recorded && !run.series.contacts.empty()) files["forces.csv"] = run.series.forces_csv();
+  if (run.recorded && !run.series.bodies.empty())
+    files["velocities.csv"] = run.series.velocities_csv();
+  if (!run.frames.empty()) {
+    files["frame_forces.csv"] = packings::frame_forces_csv(run.frames);
+    files["frame_velocities.csv"] = packings::frame_velocities_csv(run.frames);
+  }
+  return files;
+}
+
+}  // namespace
+
+int packing_command(const std::vector<std::string>& arguments) {
+  std::string scene_file, out_dir;
+  po::options_description visible(
+      "mimpact packing SCENE.json: the multiple impact of a planar packing of beads");
+  visible.add_options()(
+      "out", po::value(&out_dir),
+      "write summary.json, bodies.csv, contacts.csv and the recorded series and frames into this "
+      "directory instead of summary.json on stdout")(
+      "delta-p", po::value<double>(), "principal impulse step (N s); overrides impact.delta_p")(
+      "quiet", "no report on stderr");
+  po::variables_map values;
+  if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
+  const bool quiet = values.count("quiet") > 0;
+
+  const packings::PackingScene scene = packings::load_packing_scene(scene_file);
+  const packings::PackingModel model = packings::build_packing_model(scene);
+  std::optional<double> delta_p;
+  if (values.count("delta-p")) delta_p = values["delta-p"].as<double>();
+  if (delta_p && scene.adaptive())
+    throw InvalidInput("--delta-p chooses the step of the impulse-step integrator; " + scene_file +
+                       " has \"integrator\": \"adaptive\", whose accuracy is impact.tolerance");
+  const bool recording =
+      !scene.record.contacts.empty() || !scene.record.beads.empty() || scene.record.frames > 0;
+  if (recording && out_dir.empty() && !quiet)
+    std::cerr << "mimpact packing: \"record\" needs --out DIR to write its series; ignored\n";
+  const packings::PackingRun run =
+      packings::run_packing_scene(scene, model,
+                                  {.delta_p = delta_p,
+                                   .delta_p_field = delta_p ? "--delta-p" : "impact.delta_p",
+                                   .record = recording && !out_dir.empty()});
+  const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
+  if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
+  if (run.impact.lzb.status != numerics::LzbStatus::terminated)
+    throw Error(scene_file + ": " + run.impact.lzb.message + "; no output written");
+  if (!(run.impact.velocity_after.allFinite() && run.impact.lzb.max_force.allFinite() &&
+        std::isfinite(run.impact.lzb.duration)))
+    throw Error(scene_file +
+                ": the run produced a non-finite velocity, force or duration; no output written");
+  if (out_dir.empty()) {
+    std::cout << summary.dump(2) << "\n";
+    return 0;
+  }
+  write_output_directory(out_dir, output_files(summary, model, run),
+                         {"summary.json", "bodies.csv", "contacts.csv", "forces.csv",
+                          "velocities.csv", "frame_forces.csv", "frame_velocities.csv"});
+  return 0;
+}
+
+}  // namespace mimpact::cli

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+#include "mimpact/chains/contact_model.hpp"
+#include "mimpact/kernel/non_smooth_dynamical_system.hpp"
+#include "mimpact/packings/packing_scene.hpp"
+
+namespace mimpact::packings {
+
+// Beads closer than this share of the sum of their radii touch (a contact, at the distance of
+// their centres); closer still, they overlap, which the scene may not hold. Lattices come out
+// to 1e-15; a bead list written with 10 significant digits still touches.
+constexpr double kTouching = 1e-9;
+
+// One contact of the packing: two bodies, or a body and a wall. The normal is frozen at the
+// configuration of the impact (the LZB model's: the impact takes no time, so the bodies do not
+// move; docs/model.md, section 13): g = n . (q_second - q_first) - rest for two bodies,
+// g = n . q_first - rest for a wall, with n the wall's normal.
+struct PackingContact {
+  Eigen::Index first = 0;
+  Eigen::Index second = -1;  // -1: a wall
+  int wall = -1;             // the wall's index in the scene, or -1
+  Eigen::Vector2d normal;    // unit, from first to second (or the wall's, towards the beads)
+  double rest = 0.0;         // m: g = 0 at the configuration the contact closes in
+};
+
+// A planar packing of frictionless beads: two translations per bead (no friction, so rotation
+// plays no part), rigid walls, strikers flying at beads of the packing. Bodies are the beads
+// (a lattice row by row), then the strikers; coordinates (x_b, y_b) are 2b and 2b + 1.
+struct PackingModel : chains::ContactModel {
+  PackingModel() { dimension = 2; }
+
+  Eigen::Index bead_count = 0;                        // of the packing, strikers apart
+  Eigen::VectorXd radius;                             // m, per body
+  Eigen::Matrix<double, Eigen::Dynamic, 2> position;  // m, of the centres at t = 0, per body
+  std::vector<PackingContact> contacts;
+  std::vector<Eigen::Vector2d> wall_points, wall_normals;  // m; unit, towards the beads
+  int rows = 0, columns = 0;                               // of a lattice (0 for a bead list)
+
+  // the body's velocity (m/s) in `velocity` (per coordinate)
+  static Eigen::Vector2d of(const Eigen::VectorXd& velocity, Eigen::Index body) {
+    return velocity.segment<2>(2 * body);
+  }
+};
+
+// Places the beads, walls and strikers, finds the closed contacts by a neighbour search
+// (Boost.Geometry's R-tree) and assembles W, H and u-. Throws InvalidInput naming the bodies for
+// beads that overlap, a bead in a wall, an empty bead list, a striker whose place overlaps a
+// bead or a wall, and a packing struck by no approaching striker.
+PackingModel build_packing_model(const PackingScene& scene);
+
+// The packing in the kernel's terms: one LagrangianLinearTIDS of two coordinates per body, one
+// interaction per contact with a LinearRelation (the frozen normal) and an LzbLaw.
+std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const PackingModel& model);
+
+// Total momentum (N s) of the bodies moving with `velocity` (per coordinate).
+Eigen::Vector2d momentum(const PackingModel& model, const Eigen::VectorXd& velocity);
+
+// The body of bead (row, column) of a lattice, or bead `index` of a bead list.
+Eigen::Index body_of_target(const PackingModel& model, const std::vector<int>& target);
+
+}  // namespace mimpact::packings

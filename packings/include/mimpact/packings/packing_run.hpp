@@ -1,0 +1,58 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "mimpact/chains/impact_outcome.hpp"
+#include "mimpact/chains/time_series.hpp"
+#include "mimpact/packings/packing_model.hpp"
+#include "mimpact/packings/packing_scene.hpp"
+
+// One run of a planar packing scene by the method it chooses: what `mimpact packing` and the
+// Python module's run_packing() share.
+namespace mimpact::packings {
+
+struct PackingRunOptions {
+  std::optional<double> delta_p;                 // N s: overrides the scene's (impulse steps)
+  std::string delta_p_field = "impact.delta_p";  // what the messages about delta_p call it
+  bool record = true;                            // sample the scene's "record"
+};
+
+struct PackingRun {
+  chains::ImpactOutcome impact;
+  std::optional<double> delta_p;  // N s, of the impulse steps; none for the other methods
+  bool recorded = false;          // series (and frames, if asked for) hold the scene's record
+  chains::TimeSeries series;
+  chains::Frames frames;
+};
+
+// The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
+// event-driven scheme, or the compliant contacts integrated in time, as the scene says. Throws
+// InvalidInput for a missing or out-of-range delta_p, a delta_p given to another method, and
+// recorded contacts or beads out of range.
+PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& model,
+                             const PackingRunOptions& options = {});
+
+// summary.json of `mimpact packing`: status, method, post-impact velocities [vx, vy] per body
+// (the packing's beads, then the strikers) and the impulse each body received, per contact its
+// bodies, peak force, time and impulse, steps and the contacts integrated per step (the work),
+// kinetic energy, vector momentum and the energy ledger.
+nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
+                                       const PackingRun& run);
+
+// A few lines for people: sizes, method, steps and contacts per step, energy and momentum, the
+// fastest bodies after the impact.
+std::string packing_report(const PackingScene& scene, const PackingModel& model,
+                           const PackingRun& run);
+
+// The geometry for viewers and plots: "body,x,y,radius,mass" per body, and
+// "contact,first,second,wall,nx,ny,x,y" per contact (second -1 for a wall, whose index is
+// `wall`; x, y where the contact touches).
+std::string bodies_csv(const PackingModel& model);
+std::string contacts_csv(const PackingModel& model);
+// Frames as two tables: "time,F_0,...,F_m-1" and "time,vx_0,vy_0,...", one row per frame.
+std::string frame_forces_csv(const chains::Frames& frames);
+std::string frame_velocities_csv(const chains::Frames& frames);
+
+}  // namespace mimpact::packings

@@ -1,0 +1,378 @@
+#include "mimpact/packings/packing_model.hpp"
+
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+#include <tuple>
+
+#include "mimpact/common/error.hpp"
+#include "mimpact/kernel/lagrangian_linear_tids.hpp"
+#include "mimpact/kernel/linear_relation.hpp"
+#include "mimpact/numerics/delassus.hpp"
+#include "mimpact/plugins/lzb_law.hpp"
+
+namespace mimpact::packings {
+
+namespace {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using Point = bg::model::point<double, 2, bg::cs::cartesian>;
+using Box = bg::model::box<Point>;
+using Entry = std::pair<Point, Eigen::Index>;
+using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
+
+struct Body {
+  Eigen::Vector2d centre;
+  double radius;
+  chains::Material material;
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+};
+
+std::string bead_name(const PackingModel& model, Eigen::Index body) {
+  if (body >= model.bead_count) return "striker " + std::to_string(body - model.bead_count);
+  if (model.columns == 0) return "bead " + std::to_string(body);
+  return "bead " + std::to_string(body) + " (row " + std::to_string(body / model.columns) +
+         ", column " + std::to_string(body % model.columns) + ")";
+}
+
+std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
+  std::vector<Body> beads;
+  const double a = lattice.radius;
+  const bool hexagonal = lattice.type == LatticeType::hexagonal;
+  const double row_pitch = hexagonal ? std::sqrt(3.0) * a : 2.0 * a;
+  beads.reserve(std::size_t(lattice.rows) * std::size_t(lattice.columns));
+  for (int r = 0; r < lattice.rows; ++r)
+    for (int c = 0; c < lattice.columns; ++c) {
+      const double shift = hexagonal && r % 2 == 1 ? a : 0.0;
+      beads.push_back({{2.0 * a * c + shift, row_pitch * r}, a, lattice.material});
+    }
+  return beads;
+}
+
+// "x,y,radius" then one bead per line.
+std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory) {
+  const std::filesystem::path path = directory / list.file;
+  std::ifstream in(path);
+  if (!in) throw InvalidInput("beads.file: cannot open " + path.string() + " for reading");
+  auto fail = [&](std::size_t line, const std::string& what) -> void {
+    throw InvalidInput(path.string() + " line " + std::to_string(line) + ": " + what);
+  };
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("x,y,radius", 0) != 0)
+    fail(1, "the header is \"" + line + "\"; allowed: x,y,radius (m)");
+  std::vector<Body> beads;
+  for (std::size_t number = 2; std::getline(in, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream fields(line);
+    std::string cell;
+    double values[3];
+    int count = 0;
+    for (; std::getline(fields, cell, ','); ++count) {
+      if (count == 3) fail(number, "more than 3 columns; allowed: x,y,radius");
+      char* end = nullptr;
+      values[count] = std::strtod(cell.c_str(), &end);
+      if (end == cell.c_str() || !std::isfinite(values[count]))
+        fail(number, "\"" + cell + "\" is not a finite number");
+    }
+    if (count != 3) fail(number, std::to_string(count) + " columns; allowed: x,y,radius");
+    if (!(values[2] > 0.0)) fail(number, invalid_value_message("radius", values[2], "> 0 (m)"));
+    beads.push_back({{values[0], values[1]}, values[2], list.material});
+  }
+  if (beads.empty())
+    throw InvalidInput(path.string() + ": the bead list is empty; allowed: at least one bead");
+  return beads;
+}
+
+Tree index_of(const std::vector<Body>& bodies) {
+  std::vector<Entry> entries;
+  entries.reserve(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    entries.emplace_back(Point(bodies[i].centre.x(), bodies[i].centre.y()), Eigen::Index(i));
+  return Tree(entries.begin(), entries.end());  // packed (bulk) loading
+}
+
+// Calls visit(j) for every body of `tree` whose centre lies within `reach` of `centre`.
+template <class Visit>
+void near(const Tree& tree, const Eigen::Vector2d& centre, double reach, Visit&& visit) {
+  const Box box(Point(centre.x() - reach, centre.y() - reach),
+                Point(centre.x() + reach, centre.y() + reach));
+  for (auto it = tree.qbegin(bgi::intersects(box)); it != tree.qend(); ++it) visit(it->second);
+}
+
+class PackingBuilder {
+ public:
+  PackingBuilder(const PackingScene& scene, PackingModel& model) : scene_(scene), model_(model) {}
+
+  void build() {
+    bodies_ = scene_.lattice ? lattice_beads(*scene_.lattice)
+                             : listed_beads(*scene_.beads, scene_.directory);
+    model_.bead_count = Eigen::Index(bodies_.size());
+    if (scene_.lattice) {
+      model_.rows = scene_.lattice->rows;
+      model_.columns = scene_.lattice->columns;
+    }
+    for (const Body& body : bodies_) largest_radius_ = std::max(largest_radius_, body.radius);
+    const Tree beads = index_of(bodies_);
+    find_bead_contacts(beads);
+    place_walls();
+    place_strikers(beads);
+    assemble();
+  }
+
+ private:
+  void add_contact(PackingContact contact, double hertz_stiffness) {
+    model_.contacts.push_back(contact);
+    model_.laws.push_back(scene_.contact.law(hertz_stiffness));
+  }
+
+  // Two bodies touch within kTouching of their radii: a contact at the distance of their
+  // centres; closer, they overlap.
+  void touch(Eigen::Index i, Eigen::Index j, const Eigen::Vector2d& centre_i) {
+    const Body& a = bodies_[std::size_t(i)];
+    const Body& b = bodies_[std::size_t(j)];
+    const Eigen::Vector2d between = b.centre - centre_i;
+    const double distance = between.norm(), reach = a.radius + b.radius;
+    if (distance > reach * (1.0 + kTouching)) return;
+    if (distance < reach * (1.0 - kTouching))
+      throw InvalidInput(bead_name(model_, i) + " and " + bead_name(model_, j) + " overlap by " +
+                         to_text(reach - distance) + " m (" + to_text(1.0 - distance / reach) +
+                         " of the sum of their radii); allowed: touching within " +
+                         to_text(kTouching) + " of it, or apart");
+    add_contact({.first = i, .second = j, .normal = between / distance, .rest = distance},
+                chains::hertz_stiffness(a.radius, a.material, b.radius, b.material));
+  }
+
+  void find_bead_contacts(const Tree& beads) {
+    for (Eigen::Index i = 0; i < model_.bead_count; ++i) {
+      const Body& bead = bodies_[std::size_t(i)];
+      near(beads, bead.centre, (bead.radius + largest_radius_) * (1.0 + kTouching),
+           [&](Eigen::Index j) {
+             if (j > i) touch(i, j, bead.centre);
+           });
+    }
+    // the tree hands the neighbours in its own order: contacts by their first, then second bead
+    std::vector<std::size_t> order(model_.contacts.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) {
+      const PackingContact &a = model_.contacts[p], &b = model_.contacts[q];
+      return std::tie(a.first, a.second) < std::tie(b.first, b.second);
+    });
+    std::vector<PackingContact> contacts;
+    std::vector<numerics::ContactLaw> laws;
+    for (std::size_t k : order) {
+      contacts.push_back(model_.contacts[k]);
+      laws.push_back(model_.laws[k]);
+    }
+    model_.contacts = std::move(contacts);
+    model_.laws = std::move(laws);
+  }
+
+  // the line of a wall given by its side: touching the outermost beads
+  void wall_line(const WallSpec& wall, Eigen::Vector2d& point, Eigen::Vector2d& normal) const {
+    if (!wall.side) {
+      point = {wall.point[0], wall.point[1]};
+      normal = Eigen::Vector2d(wall.normal[0], wall.normal[1]).normalized();
+      return;
+    }
+    static const Eigen::Vector2d kNormals[] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}};
+    normal = kNormals[int(*wall.side)];
+    // the plane lies where the beads reach furthest against the normal
+    double reach = INFINITY;
+    for (Eigen::Index i = 0; i < model_.bead_count; ++i)
+      reach = std::min(reach,
+                       normal.dot(bodies_[std::size_t(i)].centre) - bodies_[std::size_t(i)].radius);
+    point = reach * normal;
+  }
+
+  void place_walls() {
+    for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
+      Eigen::Vector2d point, normal;
+      wall_line(scene_.walls[w], point, normal);
+      model_.wall_points.push_back(point);
+      model_.wall_normals.push_back(normal);
+      for (Eigen::Index i = 0; i < model_.bead_count; ++i) {
+        const Body& bead = bodies_[std::size_t(i)];
+        const double distance = normal.dot(bead.centre - point);
+        if (distance > bead.radius * (1.0 + kTouching)) continue;
+        if (distance < bead.radius * (1.0 - kTouching))
+          throw InvalidInput(bead_name(model_, i) + " is " + to_text(bead.radius - distance) +
+                             " m into walls[" + std::to_string(w) +
+                             "]; allowed: touching it within " + to_text(kTouching) +
+                             " of its radius, or apart");
+        add_contact(
+            {.first = i, .wall = int(w), .normal = normal, .rest = normal.dot(bead.centre)},
+            chains::hertz_stiffness_wall(bead.radius, bead.material, scene_.walls[w].material));
+      }
+    }
+  }
+
+  // A striker touches its target at arrival, placed back along its velocity by its gap; it
+  // touches any other bead it reaches there, and may overlap none.
+  void place_strikers(const Tree& beads) {
+    for (std::size_t s = 0; s < scene_.strikers.size(); ++s) {
+      const StrikerSpec& spec = scene_.strikers[s];
+      const std::string name = "strikers[" + std::to_string(s) + "]";
+      const Eigen::Index target = body_of_target(model_, spec.target);
+      if (target >= model_.bead_count)
+        throw InvalidInput(invalid_value_message(
+            name + ".target[0]", spec.target[0],
+            "a bead in [0, " + std::to_string(model_.bead_count) + "): aimed at nothing"));
+      const Eigen::Vector2d velocity(spec.velocity[0], spec.velocity[1]);
+      const Eigen::Vector2d direction = velocity.normalized();
+      const Body& aimed = bodies_[std::size_t(target)];
+      const Eigen::Vector2d arrival = aimed.centre - (aimed.radius + spec.radius) * direction;
+      const Eigen::Index body = Eigen::Index(bodies_.size());
+      bodies_.push_back({arrival - spec.gap * direction, spec.radius, spec.material, velocity});
+      largest_radius_ = std::max(largest_radius_, spec.radius);
+      model_.striker_arrivals.push_back(spec.gap / velocity.norm());
+      near(beads, arrival, (spec.radius + largest_radius_) * (1.0 + kTouching),
+           [&](Eigen::Index j) { touch_striker(body, j, arrival, name); });
+      check_striker_place(body, name);
+    }
+  }
+
+  // contact j-striker with the normal at arrival, g = 0 there; an overlap there is an error
+  void touch_striker(Eigen::Index striker, Eigen::Index bead, const Eigen::Vector2d& arrival,
+                     const std::string& name) {
+    const Body& s = bodies_[std::size_t(striker)];
+    const Body& b = bodies_[std::size_t(bead)];
+    const Eigen::Vector2d between = b.centre - arrival;
+    const double distance = between.norm(), reach = s.radius + b.radius;
+    if (distance > reach * (1.0 + kTouching)) return;
+    if (distance < reach * (1.0 - kTouching))
+      throw InvalidInput(name + " would overlap " + bead_name(model_, bead) + " by " +
+                         to_text(reach - distance) +
+                         " m where it reaches its target; allowed: a striker that touches its "
+                         "target and overlaps no other bead");
+    const Eigen::Vector2d normal = -between / distance;  // from the bead to the striker
+    // g = n . (q_striker - q_bead) - rest, zero at arrival
+    add_contact({.first = bead,
+                 .second = striker,
+                 .normal = normal,
+                 .rest = normal.dot(arrival - b.centre)},
+                chains::hertz_stiffness(b.radius, b.material, s.radius, s.material));
+  }
+
+  // where a striker starts: in no wall, on no other striker
+  void check_striker_place(Eigen::Index striker, const std::string& name) const {
+    const Body& s = bodies_[std::size_t(striker)];
+    for (std::size_t w = 0; w < model_.wall_points.size(); ++w)
+      if (model_.wall_normals[w].dot(s.centre - model_.wall_points[w]) < s.radius)
+        throw InvalidInput(name + " starts in walls[" + std::to_string(w) +
+                           "]; allowed: a striker that flies clear of the walls");
+    for (Eigen::Index other = model_.bead_count; other < striker; ++other) {
+      const Body& o = bodies_[std::size_t(other)];
+      if ((o.centre - s.centre).norm() < o.radius + s.radius)
+        throw InvalidInput(name + " starts on " + bead_name(model_, other) +
+                           "; allowed: strikers apart from each other");
+    }
+  }
+
+  void assemble() {
+    const Eigen::Index n = Eigen::Index(bodies_.size()), m = model_.contact_count();
+    model_.radius.resize(n);
+    model_.position.resize(n, 2);
+    model_.mass.resize(2 * n);
+    model_.velocity.resize(2 * n);
+    for (Eigen::Index b = 0; b < n; ++b) {
+      const Body& body = bodies_[std::size_t(b)];
+      const double mass = chains::bead_mass(body.radius, body.material);
+      if (!(mass > 0.0 && std::isfinite(mass)))
+        throw InvalidInput(bead_name(model_, b) + ": " +
+                           invalid_value_message("mass", mass, "a finite mass > 0 kg") +
+                           "; check its radius and density");
+      model_.radius(b) = body.radius;
+      model_.position.row(b) = body.centre.transpose();
+      model_.mass.segment<2>(2 * b).setConstant(mass);
+      model_.velocity.segment<2>(2 * b) = body.velocity;
+    }
+    std::vector<Eigen::Triplet<double>> gradients;
+    auto add = [&](Eigen::Index body, Eigen::Index contact, const Eigen::Vector2d& direction) {
+      for (int k = 0; k < 2; ++k)  // orthogonal contacts share no entry (a square lattice)
+        if (direction(k) != 0.0) gradients.emplace_back(2 * body + k, contact, direction(k));
+    };
+    for (Eigen::Index c = 0; c < m; ++c) {
+      const PackingContact& contact = model_.contacts[std::size_t(c)];
+      if (contact.second < 0) {
+        add(contact.first, c, contact.normal);
+      } else {
+        add(contact.first, c, -contact.normal);
+        add(contact.second, c, contact.normal);
+      }
+    }
+    model_.W.resize(2 * n, m);
+    model_.W.setFromTriplets(gradients.begin(), gradients.end());
+    model_.H = numerics::assemble_delassus(model_.W, model_.mass.cwiseInverse());
+    model_.u_minus = model_.W.transpose() * model_.velocity;
+    if (!(model_.u_minus.size() > 0 && model_.u_minus.minCoeff() < 0.0))
+      throw InvalidInput(
+          "no striker approaches its target: the packing is struck by nothing; allowed: a "
+          "striker whose velocity points at the bead it targets");
+  }
+
+  const PackingScene& scene_;
+  PackingModel& model_;
+  std::vector<Body> bodies_;
+  double largest_radius_ = 0.0;
+};
+
+}  // namespace
+
+PackingModel build_packing_model(const PackingScene& scene) {
+  PackingModel model;
+  PackingBuilder(scene, model).build();
+  return model;
+}
+
+Eigen::Index body_of_target(const PackingModel& model, const std::vector<int>& target) {
+  if (model.columns > 0) return Eigen::Index(target[0]) * model.columns + target[1];
+  return target[0];
+}
+
+std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const PackingModel& model) {
+  auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
+  std::vector<std::shared_ptr<kernel::DynamicalSystem>> bodies;
+  const Eigen::Index n = model.body_count();
+  for (Eigen::Index b = 0; b < n; ++b) {
+    kernel::LagrangianLinearTIDS::Matrices matrices;
+    matrices.mass = model.mass(2 * b) * Eigen::Matrix2d::Identity();
+    bodies.push_back(std::make_shared<kernel::LagrangianLinearTIDS>(
+        Eigen::Vector2d(model.position.row(b).transpose()),
+        Eigen::Vector2d(PackingModel::of(model.velocity, b)), matrices,
+        "body " + std::to_string(b)));
+    system->add(bodies.back());
+  }
+  for (std::size_t c = 0; c < model.contacts.size(); ++c) {
+    const PackingContact& contact = model.contacts[c];
+    const Eigen::Vector2d& n_c = contact.normal;
+    auto law = std::make_shared<plugins::LzbLaw>(model.laws[c]);
+    const std::string name = "contact " + std::to_string(c);
+    if (contact.second < 0) {
+      auto relation = std::make_shared<kernel::LinearRelation>(n_c.transpose(), -contact.rest);
+      system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
+                                                        relation, law, name));
+    } else {
+      Eigen::RowVector4d row(-n_c.x(), -n_c.y(), n_c.x(), n_c.y());
+      auto relation = std::make_shared<kernel::LinearRelation>(row, -contact.rest);
+      system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
+                                                        bodies[std::size_t(contact.second)],
+                                                        relation, law, name));
+    }
+  }
+  return system;
+}
+
+Eigen::Vector2d momentum(const PackingModel& model, const Eigen::VectorXd& velocity) {
+  Eigen::Vector2d total = Eigen::Vector2d::Zero();
+  for (Eigen::Index b = 0; b < model.body_count(); ++b)
+    total += model.mass(2 * b) * PackingModel::of(velocity, b);
+  return total;
+}
+
+}  // namespace mimpact::packings

@@ -1,0 +1,235 @@
+#include "mimpact/packings/packing_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include "mimpact/chains/chain_impact.hpp"
+#include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/common/error.hpp"
+
+namespace mimpact::packings {
+
+namespace {
+
+void check_record(const PackingScene& scene, const PackingModel& model) {
+  auto check = [&](const std::vector<int>& indices, const std::string& key, Eigen::Index count,
+                   const std::string& what) {
+    for (std::size_t k = 0; k < indices.size(); ++k)
+      if (indices[k] >= count)
+        throw InvalidInput(
+            invalid_value_message("record." + key + "[" + std::to_string(k) + "]", indices[k],
+                                  "a " + what + " index in [0, " + std::to_string(count) + ")"));
+  };
+  check(scene.record.contacts, "contacts", model.contact_count(), "contact");
+  check(scene.record.beads, "beads", model.body_count(), "body (beads, then strikers)");
+}
+
+PackingRun run_lzb(const PackingScene& scene, const PackingModel& model,
+                   const PackingRunOptions& options, bool record) {
+  PackingRun run;
+  plugins::LzbImpactOptions impact = scene.impact_options();
+  if (!scene.adaptive()) {
+    run.delta_p = chains::impulse_step(model, options.delta_p, scene.delta_p,
+                                       impact.impulse_steps.max_steps, options.delta_p_field);
+    impact.impulse_steps.delta_p = *run.delta_p;
+    validate(impact.impulse_steps, "impact");
+  }
+  chains::ImpactRecorder recorder(model, scene.chain_record(), scene.record.frames);
+  if (record) recorder.configure(impact);
+  run.impact = chains::simulate_impacts(model, build_packing_system(model), impact,
+                                        record ? &recorder : nullptr);
+  if (record) {
+    run.series = recorder.series(run.impact);
+    run.frames = recorder.frames(run.impact);
+  }
+  run.recorded = record;
+  return run;
+}
+
+std::vector<double> pair(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
+
+// [[vx, vy], ...] per body
+nlohmann::ordered_json per_body(const PackingModel& model, const Eigen::VectorXd& values) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (Eigen::Index b = 0; b < model.body_count(); ++b)
+    list.push_back(pair(PackingModel::of(values, b)));
+  return list;
+}
+
+std::string method_name(const PackingScene& scene, const PackingRun& run) {
+  if (scene.adaptive())
+    return "adaptive LZB, tolerance " + to_text(scene.impact_options().adaptive.tolerance);
+  if (run.delta_p) return "LZB impulse steps, delta_p = " + to_text(*run.delta_p) + " N s";
+  return "compliant contacts integrated in time";
+}
+
+double contacts_per_step(const chains::ImpactOutcome& impact) {
+  return impact.lzb.steps > 0 ? double(impact.lzb.contact_steps) / double(impact.lzb.steps) : 0.0;
+}
+
+// the contacts the impact reached: those that carried a force
+Eigen::Index contacts_reached(const chains::ImpactOutcome& impact) {
+  return Eigen::Index((impact.lzb.max_force.array() > 0.0).count());
+}
+
+chains::TimeSeries frame_table(const chains::Frames& frames, bool forces) {
+  chains::TimeSeries table;
+  table.time = frames.time;
+  table.dimension = 2;
+  const std::vector<std::vector<double>>& rows = forces ? frames.force : frames.velocity;
+  const std::size_t columns = rows.empty() ? 0 : rows.front().size();
+  std::vector<int>& labels = forces ? table.contacts : table.bodies;
+  labels.resize(forces ? columns : columns / 2);
+  std::iota(labels.begin(), labels.end(), 0);
+  (forces ? table.force : table.velocity) = rows;
+  return table;
+}
+
+}  // namespace
+
+PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& model,
+                             const PackingRunOptions& options) {
+  check_record(scene, model);
+  const bool record = options.record && (!scene.record.contacts.empty() ||
+                                         !scene.record.beads.empty() || scene.record.frames > 0);
+  if (scene.method == chains::Method::lzb) return run_lzb(scene, model, options, record);
+  if (options.delta_p)
+    throw InvalidInput(options.delta_p_field +
+                       " is the step of the LZB method; the scene has method \"compliant\"");
+  chains::CompliantRun compliant = chains::simulate_compliant(
+      model, build_packing_system(model), scene.compliant,
+      record ? scene.chain_record() : chains::RecordSpec{}, record ? scene.record.frames : 0);
+  PackingRun run;
+  run.impact = std::move(compliant.impact);
+  run.series = std::move(compliant.series);
+  run.frames = std::move(compliant.frames);
+  run.recorded = record;
+  return run;
+}
+
+nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
+                                       const PackingRun& run) {
+  using json = nlohmann::ordered_json;
+  const chains::ImpactOutcome& impact = run.impact;
+  json contacts = json::array();
+  for (Eigen::Index c = 0; c < model.contact_count(); ++c) {
+    const PackingContact& contact = model.contacts[std::size_t(c)];
+    json entry{{"index", c}, {"first", contact.first}};
+    if (contact.second >= 0)
+      entry["second"] = contact.second;
+    else
+      entry["wall"] = contact.wall;
+    entry["normal"] = pair(contact.normal);
+    entry["max_force"] = impact.lzb.max_force(c);
+    entry["time_of_max"] = impact.lzb.time_of_max_force(c);
+    entry["impulse"] = impact.lzb.impulse(c);
+    contacts.push_back(entry);
+  }
+  const Eigen::VectorXd& after = impact.velocity_after;
+  const Eigen::VectorXd body_impulses = (after - model.velocity).cwiseProduct(model.mass);
+  json summary{
+      {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.lzb.status)},
+      {"method", scene.method == chains::Method::lzb ? "lzb" : "compliant"},
+      {"integrator", scene.method == chains::Method::compliant ? json(nullptr)
+                     : scene.adaptive()                        ? json("adaptive")
+                                                               : json("impulse-step")},
+      {"delta_p", run.delta_p ? json(*run.delta_p) : json(nullptr)},
+      {"tolerance", scene.adaptive() ? json(scene.impact_options().adaptive.tolerance)
+                    : scene.method == chains::Method::compliant ? json(scene.compliant.tolerance)
+                                                                : json(nullptr)},
+      {"beads", model.bead_count},
+      {"bodies", model.body_count()},
+      {"post_impact_velocities", per_body(model, after)},
+      {"body_impulses", per_body(model, body_impulses)},
+      {"steps", impact.lzb.steps},
+      {"contacts_per_step", contacts_per_step(impact)},
+      {"contacts_reached", contacts_reached(impact)},
+      {"impacts", impact.impact_times.size()},
+      {"impact_time", impact.impact_time},
+      {"impact_duration", impact.lzb.duration},
+      {"kinetic_energy",
+       {{"before", chains::kinetic_energy(model, model.velocity)},
+        {"after", chains::kinetic_energy(model, after)},
+        {"residual_potential", impact.lzb.residual_energy}}},
+      {"momentum",
+       {{"before", pair(momentum(model, model.velocity))},
+        {"after", pair(momentum(model, after))}}},
+      {"energy", chains::ledger_json(chains::energy_ledger(model, impact))},
+      {"wall_time", impact.wall_time},
+      {"contacts", contacts}};
+  return summary;
+}
+
+std::string packing_report(const PackingScene& scene, const PackingModel& model,
+                           const PackingRun& run) {
+  const chains::ImpactOutcome& impact = run.impact;
+  const double before = chains::kinetic_energy(model, model.velocity);
+  const double after = chains::kinetic_energy(model, impact.velocity_after);
+  const Eigen::Vector2d p0 = momentum(model, model.velocity);
+  const Eigen::Vector2d p1 = momentum(model, impact.velocity_after);
+  Eigen::Index fastest = 0;
+  double top = 0.0;
+  for (Eigen::Index b = 0; b < model.body_count(); ++b)
+    if (PackingModel::of(impact.velocity_after, b).norm() > top) {
+      top = PackingModel::of(impact.velocity_after, b).norm();
+      fastest = b;
+    }
+  char text[1024];
+  std::snprintf(
+      text, sizeof text,
+      "%lld beads, %lld strikers, %lld contacts, %s\n"
+      "%lld steps, %.1f contacts per step, %lld contacts reached, in %.3g s of computation; "
+      "the impact lasts %.6g s (%s)\n"
+      "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum [%.9g, %.9g] -> [%.9g, %.9g] N s\n"
+      "fastest body after the impact: %lld, [%.6g, %.6g] m/s (all in summary.json)\n",
+      (long long)model.bead_count, (long long)(model.body_count() - model.bead_count),
+      (long long)model.contact_count(), method_name(scene, run).c_str(),
+      (long long)impact.lzb.steps, contacts_per_step(impact), (long long)contacts_reached(impact),
+      impact.wall_time, impact.lzb.duration,
+      impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
+                             : std::string(numerics::to_string(impact.lzb.status)).c_str(),
+      before, after, 100.0 * (after / before - 1.0), p0.x(), p0.y(), p1.x(), p1.y(),
+      (long long)fastest, PackingModel::of(impact.velocity_after, fastest).x(),
+      PackingModel::of(impact.velocity_after, fastest).y());
+  return text;
+}
+
+std::string bodies_csv(const PackingModel& model) {
+  std::string text = "body,x,y,radius,mass\n";
+  char line[160];
+  for (Eigen::Index b = 0; b < model.body_count(); ++b) {
+    std::snprintf(line, sizeof line, "%lld,%.17g,%.17g,%.17g,%.17g\n", (long long)b,
+                  model.position(b, 0), model.position(b, 1), model.radius(b), model.mass(2 * b));
+    text += line;
+  }
+  return text;
+}
+
+std::string contacts_csv(const PackingModel& model) {
+  std::string text = "contact,first,second,wall,nx,ny,x,y\n";
+  char line[200];
+  for (std::size_t c = 0; c < model.contacts.size(); ++c) {
+    const PackingContact& contact = model.contacts[c];
+    // where it touches: the first body's surface along the normal (against a wall, its
+    // surface towards the wall)
+    const Eigen::Vector2d centre = model.position.row(contact.first).transpose();
+    const double side = contact.second >= 0 ? 1.0 : -1.0;
+    const Eigen::Vector2d at = centre + side * model.radius(contact.first) * contact.normal;
+    std::snprintf(line, sizeof line, "%zu,%lld,%lld,%d,%.17g,%.17g,%.17g,%.17g\n", c,
+                  (long long)contact.first, (long long)contact.second, contact.wall,
+                  contact.normal.x(), contact.normal.y(), at.x(), at.y());
+    text += line;
+  }
+  return text;
+}
+
+std::string frame_forces_csv(const chains::Frames& frames) {
+  return frame_table(frames, true).forces_csv();
+}
+
+std::string frame_velocities_csv(const chains::Frames& frames) {
+  return frame_table(frames, false).velocities_csv();
+}
+
+}  // namespace mimpact::packings

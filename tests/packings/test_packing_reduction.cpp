@@ -1,0 +1,112 @@
+// Issue 12, item a: a square packing struck along a lattice row (or column) is, in that row,
+// exactly the chain of its beads, and the other rows never move; a hexagonal packing of one row
+// is a chain. Orthogonal contacts do not couple (H has no entry between a row's contact and a
+// column's), so the row's impact is the chain's to round-off, by both LZB integrators.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mimpact/chains/chain_impact.hpp"
+#include "packing_runs.hpp"
+
+namespace mimpact::testing {
+namespace {
+
+struct Method {
+  const char* name;
+  std::string impact;  // the scene's "impact"
+};
+
+const Method kMethods[] = {
+    {"impulse steps", R"("impact": {"delta_p": 4e-6})"},
+    {"adaptive", R"("impact": {"integrator": "adaptive", "tolerance": 1e-9})"}};
+
+// C beads in a chain struck from the left at 1 m/s by an equal bead.
+chains::ImpactOutcome chain_of(int beads, const std::string& impact) {
+  const chains::ChainScene scene = chains::parse_chain_scene(
+      "{" + kSteel + R"(, "chain": {"segments": [{"count": )" + std::to_string(beads) +
+          R"(, "radius": 0.005}]}, "strikers": [{"side": "left", "radius": 0.005, "velocity": 1.0}], )" +
+          impact + "}",
+      "chain");
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  plugins::LzbImpactOptions options = scene.impact_options();
+  return chains::simulate_chain_impact(model, options);
+}
+
+// The packing's contact between bodies a and b.
+Eigen::Index contact_between(const packings::PackingModel& model, Eigen::Index a, Eigen::Index b) {
+  for (std::size_t c = 0; c < model.contacts.size(); ++c) {
+    const packings::PackingContact& contact = model.contacts[c];
+    if ((contact.first == a && contact.second == b) || (contact.first == b && contact.second == a))
+      return Eigen::Index(c);
+  }
+  ADD_FAILURE() << "no contact between " << a << " and " << b;
+  return 0;
+}
+
+// beads[k] of the packing is bead k of the chain; `axis` the line's direction (0 x, 1 y).
+void expect_chain(const PackingCase& packing, const std::vector<Eigen::Index>& beads, int axis,
+                  const chains::ImpactOutcome& chain) {
+  const packings::PackingModel& model = packing.model;
+  const Eigen::VectorXd& v = packing.run.impact.velocity_after;
+  const Eigen::Index striker = model.body_count() - 1;
+  EXPECT_NEAR(v(2 * striker + axis), chain.velocity_after(0), 1e-12);
+  EXPECT_EQ(v(2 * striker + 1 - axis), 0.0);
+  for (std::size_t k = 0; k < beads.size(); ++k) {
+    EXPECT_NEAR(v(2 * beads[k] + axis), chain.velocity_after(Eigen::Index(k) + 1), 1e-12) << k;
+    EXPECT_EQ(v(2 * beads[k] + 1 - axis), 0.0) << k;
+  }
+  // every other bead is untouched, exactly
+  double others = 0.0;
+  for (Eigen::Index b = 0; b < model.bead_count; ++b)
+    if (std::find(beads.begin(), beads.end(), b) == beads.end())
+      others = std::max(others, packings::PackingModel::of(v, b).norm());
+  EXPECT_EQ(others, 0.0);
+  const Eigen::VectorXd& peak = packing.run.impact.lzb.max_force;
+  const double largest = chain.lzb.max_force.maxCoeff();
+  EXPECT_NEAR(peak(contact_between(model, beads[0], striker)), chain.lzb.max_force(0),
+              1e-12 * largest);
+  for (std::size_t k = 0; k + 1 < beads.size(); ++k)
+    EXPECT_NEAR(peak(contact_between(model, beads[k], beads[k + 1])),
+                chain.lzb.max_force(Eigen::Index(k) + 1), 1e-12 * largest)
+        << k;
+}
+
+TEST(PackingReduction, SquarePackingStruckAlongARowIsTheChainOfThatRow) {
+  constexpr int kRows = 5, kColumns = 8, kRow = 2;
+  for (const Method& method : kMethods) {
+    SCOPED_TRACE(method.name);
+    const PackingCase packing = run_packing(
+        lattice_scene("square", kRows, kColumns, "[2, 0]", "[1.0, 0.0]", method.impact));
+    std::vector<Eigen::Index> row;
+    for (int c = 0; c < kColumns; ++c) row.push_back(kRow * kColumns + c);
+    expect_chain(packing, row, 0, chain_of(kColumns, method.impact));
+  }
+}
+
+TEST(PackingReduction, SquarePackingStruckAlongAColumnIsTheChainOfThatColumn) {
+  constexpr int kRows = 7, kColumns = 4, kColumn = 1;
+  for (const Method& method : kMethods) {
+    SCOPED_TRACE(method.name);
+    const PackingCase packing = run_packing(
+        lattice_scene("square", kRows, kColumns, "[0, 1]", "[0.0, 1.0]", method.impact));
+    std::vector<Eigen::Index> column;
+    for (int r = 0; r < kRows; ++r) column.push_back(r * kColumns + kColumn);
+    expect_chain(packing, column, 1, chain_of(kRows, method.impact));
+  }
+}
+
+TEST(PackingReduction, HexagonalPackingOfOneRowIsAChain) {
+  constexpr int kColumns = 10;
+  for (const Method& method : kMethods) {
+    SCOPED_TRACE(method.name);
+    const PackingCase packing =
+        run_packing(lattice_scene("hexagonal", 1, kColumns, "[0, 0]", "[1.0, 0.0]", method.impact));
+    std::vector<Eigen::Index> row(kColumns);
+    std::iota(row.begin(), row.end(), Eigen::Index(0));
+    expect_chain(packing, row, 0, chain_of(kColumns, method.impact));
+  }
+}
+
+}  // namespace
+}  // namespace mimpact::testing
