@@ -1,4 +1,4 @@
-// The command line contract: `mimpact chain`, `converge` and `lcp` outputs, errors and exit codes.
+// The command line contract: `mimpact chain`, `packing`, `converge` and `lcp` outputs, errors and exit codes.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -525,6 +525,55 @@ TEST(Cli, UnknownCommandIsAnError) {
   const CliRun run = mimpact("fly");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("unknown command \"fly\""), std::string::npos) << run.err;
+}
+
+}  // namespace
+
+namespace {
+
+// `mimpact packing`: the example packing writes its geometry, frames and a summary whose
+// velocities are [vx, vy] per body and whose momentum and energy are kept.
+TEST(PackingCommand, OutWritesSummaryGeometryAndFrames) {
+  const fs::path out =
+      fs::temp_directory_path() / ("mimpact_packing_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const CliRun run =
+      mimpact("packing " + scene("packings/hexagonal_10x10.json") + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("100 beads, 1 strikers, 262 contacts, adaptive LZB"), std::string::npos)
+      << run.err;
+  std::ifstream file(out / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(file);
+  EXPECT_EQ(summary["post_impact_velocities"].size(), 101u);
+  EXPECT_EQ(summary["post_impact_velocities"][0].size(), 2u);
+  const auto& momentum = summary["momentum"];
+  for (int k = 0; k < 2; ++k)
+    EXPECT_NEAR(momentum["after"][k].get<double>(), momentum["before"][k].get<double>(), 1e-15);
+  EXPECT_NEAR(summary["kinetic_energy"]["after"].get<double>() /
+                  summary["kinetic_energy"]["before"].get<double>(),
+              1.0, 2e-8);
+  for (const char* name :
+       {"bodies.csv", "contacts.csv", "frame_forces.csv", "frame_velocities.csv"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  fs::remove_all(out);
+}
+
+TEST(PackingCommand, BadSceneIsNamedAndWritesNothing) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("mimpact_bad_packing_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "scene.json")
+      << R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+             "lattice": {"type": "square", "rows": 2, "columns": 2, "radius": 0.005},
+             "strikers": [{"target": [3, 0], "radius": 0.005, "velocity": [1, 0]}]})";
+  const CliRun run =
+      mimpact("packing " + (dir / "scene.json").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("strikers[0].target[0] = 3 is invalid; allowed: a row in [0, 2)"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
