@@ -22,7 +22,9 @@ using numerics::internal::Crossing;
 namespace {
 
 // What ends a segment of the integration at a contact.
-enum class EventKind { none, joining, leaving, turning };
+// turning: a joined contact's compression ends; reanchoring: an open contact stops separating
+// (frozen gaps only)
+enum class EventKind { none, joining, leaving, turning, reanchoring };
 
 constexpr double kNever = std::numeric_limits<double>::infinity();
 
@@ -54,6 +56,8 @@ struct Contact {
   std::vector<JacobianEntry> entries;  // linear relations: constant
   double anchor_gap = 0.0;             // linear relations: the gap at the bodies' anchors (m)
   bool joined = false;
+  // closed at the start or joined since: a gap it has opened since may be frozen
+  bool has_closed = false;
   Index slot = -1;       // of its impulse in the integrated state
   double impulse = 0.0;  // N s, until the last commit
   // where its work was last accounted: the impulse since the last restart (N s) and u (m/s)
@@ -206,6 +210,7 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
   for (Index j = 0; j < m; ++j) {
     Contact& c = s.contact(j);
     c.anchor_gap = system.gap(j, s.anchor_q);
+    c.has_closed = c.anchor_gap <= s.leave_overlap;  // touching at the start
     if (s.linear)
       system.for_each_jacobian_entry(j, s.anchor_q, [&](Index coordinate, double value) {
         if (value != 0.0)
@@ -319,6 +324,7 @@ void CompliantIntegrator::join(Index j) {
   State& s = *state_;
   Contact& c = s.contact(j);
   c.joined = true;
+  c.has_closed = true;
   s.joined.push_back(j);
   forget_prediction(j);
   for (Index k : {system_->first_system(j), system_->second_system(j)})
@@ -356,6 +362,10 @@ void CompliantIntegrator::predict_join(Index j) {
     rate += entry.value * v;
   }
   if (!(rate < 0.0)) return;
+  if (options_.frozen_gaps && c.has_closed && gap > s.leave_overlap) {
+    c.anchor_gap -= gap;  // it approaches again (turned by a collision): its gap is forgotten
+    gap = 0.0;
+  }
   const double time = time_ + std::max(0.0, (gap + s.join_overlap) / -rate);
   s.predictions.push({time, j, c.version});
   c.predicted = true;
@@ -585,6 +595,8 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
         return gap + s.join_overlap;
       case EventKind::leaving:
         return -gap - s.leave_overlap;
+      case EventKind::reanchoring:
+        return rate;
       default:  // turning
         return -rate;
     }
@@ -598,10 +610,24 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
       const bool joined = s.contact(j).joined;
       const double g0 = before.gap[w], g1 = after.gap[w];
       EventKind kind = EventKind::none;
+      // an open contact whose gap is frozen, once it stops separating (gaps below the overlap
+      // resolution are round-off of the last freeze)
+      const bool freezes =
+          options_.frozen_gaps && !joined && s.contact(j).has_closed && g0 > s.leave_overlap;
+      if (freezes && before.rate[w] <= 0.0) {
+        // it stopped separating where the segment starts (a collision turned it at once)
+        found.push_back({long(j), int(EventKind::reanchoring), t0});
+        continue;
+      }
+      // Crossed at the time of the event just handled (within its tolerance: a symmetric
+      // strike moves mirror contacts alike), so already past its threshold where the segment
+      // starts: it joins, or leaves, there.
       if (!joined && g0 <= -s.join_overlap && before.rate[w] < 0.0) {
-        // crossed at the time of the event just handled (within its tolerance), so already
-        // past the threshold where the segment starts: it joins there
         found.push_back({long(j), int(EventKind::joining), t0});
+        continue;
+      }
+      if (joined && g0 >= -s.leave_overlap && before.rate[w] > 0.0) {
+        found.push_back({long(j), int(EventKind::leaving), t0});
         continue;
       }
       if (!joined && g0 > -s.join_overlap && g1 <= -s.join_overlap) {
@@ -610,6 +636,8 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
         kind = EventKind::leaving;
       } else if (joined && g0 < -s.leave_overlap && before.rate[w] < 0.0 && after.rate[w] >= 0.0) {
         kind = EventKind::turning;
+      } else if (freezes && before.rate[w] > 0.0 && after.rate[w] <= 0.0) {
+        kind = EventKind::reanchoring;
       }
       if (kind == EventKind::none) continue;
       const Index one[] = {j};
@@ -686,6 +714,16 @@ bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& r
     // from stepping over the peak (the separation speed to 1e-9 at the default tolerances)
     commit_motion();
     max_compression_[i] = std::max(max_compression_[i], -s.gap_now[i]);
+    restart();
+    return false;
+  }
+  if (event.kind == EventKind::reanchoring) {
+    // the gap the contact opened is forgotten where it stops separating: g = 0 from here, as
+    // the LZB impact, which keeps the configuration, has it
+    double gap, rate;
+    linear_gap(s, s.contact(event.contact), time_, s.y.data(), gap, rate);
+    commit_motion();
+    s.contact(event.contact).anchor_gap -= gap;
     restart();
     return false;
   }

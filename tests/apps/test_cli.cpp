@@ -1,4 +1,5 @@
-// The command line contract: `mimpact chain`, `packing`, `converge` and `lcp` outputs, errors and exit codes.
+// The command line contract: `mimpact chain`, `packing`, `converge` and `lcp` outputs, errors and
+// exit codes.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>

@@ -99,9 +99,19 @@ constexpr auto enum_names(Method) {
   return std::array{Name{Method::lzb, "lzb"}, Name{Method::compliant, "compliant"}};
 }
 
+// What a contact that opens during the impact does when its bodies approach again: close its
+// gap first ("open", real beads), or close from where it stopped separating ("frozen", the
+// LZB impact's frozen configuration; docs/model.md, section 13).
+enum class Gaps { open, frozen };
+constexpr auto enum_names(Gaps) {
+  using Name = std::pair<Gaps, std::string_view>;
+  return std::array{Name{Gaps::open, "open"}, Name{Gaps::frozen, "frozen"}};
+}
+
 struct CompliantSpec {
   double tolerance = 1e-10;        // relative error control of the integration
   std::optional<double> end_time;  // s; required with a precompression
+  Gaps gaps = Gaps::open;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -109,6 +119,7 @@ struct CompliantSpec {
     field("tolerance", self.tolerance,
           within(1e-14, 1.0, {}, false, true).described("1e-14 <= tolerance < 1"));
     field("end_time", self.end_time, positive("s"));
+    field("gaps", self.gaps);
   }
 };
 

@@ -27,12 +27,19 @@ struct CompliantOptions {
   // of it. Smaller overlaps carry forces of K resolution^eta and no more; 1e-6 of the
   // impact's largest overlap is below 1e-9 of its peak force and 1e-15 of its energy.
   double overlap_resolution = 1e-12;
+  // Linear relations: a contact that opens forgets its gap where it stops separating, and
+  // closes again from there (g = 0). This is the LZB impact's frozen configuration, under which
+  // no gap opens (docs/model.md, section 13): the compliant contacts are then the continuous
+  // limit of LZB for e = 1 even where contacts open and close again within the impact. Off, the
+  // bodies must close the gaps they opened, as real beads do.
+  bool frozen_gaps = false;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
     numerics::OdeOptions::visit_fields(self.ode, field);
     field("max_steps", self.max_steps, at_least(1));
     field("overlap_resolution", self.overlap_resolution, positive("m"));
+    field("frozen_gaps", self.frozen_gaps);
   }
 };
 
