@@ -73,6 +73,9 @@ class LzbAdaptiveIntegrator::Impact {
   void locate(double t0, double t1, const Watched& before, const Watched& after,
               std::vector<internal::Crossing>& found);
   double watched_value(std::size_t member, int kind, const Watched& values) const;
+  // the same for one member at the state y: its velocity from its column of H alone
+  double member_velocity(const State& y, std::size_t member) const;
+  double member_value(std::size_t member, int kind, const State& y) const;
   void end_segment(const State& y);
   void account_work(const State& y);
   void apply(const std::vector<internal::Crossing>& crossings, double t);
@@ -114,7 +117,7 @@ class LzbAdaptiveIntegrator::Impact {
   std::vector<double> rhs_velocity_, velocity_at_;
   // per active member: its impulse increment and velocity where the work was last accounted
   std::vector<double> accounted_impulse_, accounted_velocity_;
-  Watched before_, after_, probe_;
+  Watched before_, after_;
   std::vector<Index> previous_members_;  // begin_segment's buffer
   ImpactSampler sampler_;
 };
@@ -241,6 +244,36 @@ void LzbAdaptiveIntegrator::Impact::member_velocities(const State& y,
   }
 }
 
+double LzbAdaptiveIntegrator::Impact::member_velocity(const State& y, std::size_t member) const {
+  const Index j = members_[member];
+  double velocity = velocity_[j];
+  const int* start = H_->outerIndexPtr();
+  const int* row = H_->innerIndexPtr();
+  const double* value = H_->valuePtr();
+  // H is symmetric: column j holds row j, the contacts whose impulses move u_j
+  for (int k = start[j]; k < start[j + 1]; ++k) {
+    const int other = member_of_[row[k]];
+    if (other >= 0 && std::size_t(other) < active_)
+      velocity += value[k] * y[active_ + std::size_t(other)] * impulse_scale_[row[k]];
+  }
+  return velocity;
+}
+
+double LzbAdaptiveIntegrator::Impact::member_value(std::size_t member, int kind,
+                                                   const State& y) const {
+  if (kind == release)
+    return y[member] * delta_scale_[members_[member]] - release_level_[members_[member]];
+  const double velocity = member_velocity(y, member);
+  switch (kind) {
+    case join:
+      return velocity + velocity_tolerance_;
+    case compression_end:
+      return -velocity;
+    default:  // reload
+      return velocity;
+  }
+}
+
 // d delta_j/dt = -u_j (compression, mono-stiffness expansion) or -u_j / e_j^2 (bi-stiffness
 // expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
 void LzbAdaptiveIntegrator::Impact::derivative(const State& y, State& dydt) {
@@ -287,16 +320,18 @@ void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& 
                                            const Watched& after,
                                            std::vector<internal::Crossing>& found) {
   const double resolution = 4.0 * DBL_EPSILON * t1;
-  Watched& probe = probe_;
   auto check = [&](std::size_t member, int kind) {
     const double q0 = watched_value(member, kind, before);
     const double q1 = watched_value(member, kind, after);
     if (q1 > 0.0 || (q0 <= 0.0 && t0 != segment_start_)) return;
     double crossing = t0;
     if (q0 > 0.0) {
+      // this member's value alone: one column of H, not all the members' velocities (a
+      // packing keeps hundreds of contacts in the impact, and every narrowing step asked for
+      // all of them)
       auto q = [&](double t) {
-        watch(t, probe);
-        return watched_value(member, kind, probe);
+        ode_.state_at(t, y_at_);
+        return member_value(member, kind, y_at_);
       };
       crossing = narrow_crossing(q, t0, t1, q0, q1, resolution).upper;
     }
