@@ -24,6 +24,7 @@ from ._mimpact import (
     LzbLaw,
     NonSmoothDynamicalSystem,
     NonSmoothLaw,
+    PackingResult,
     Relation,
     RunSummary,
     Simulation,
@@ -36,6 +37,7 @@ from ._mimpact import (
     hertz_stiffness_wall,
     read_scene,
     run_chain,
+    run_packing,
 )
 from .fit import FitResult, fit
 from .sweep import grid_points, sweep

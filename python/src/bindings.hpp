@@ -7,5 +7,6 @@ namespace mimpact::python {
 
 void bind_chains(pybind11::module_& module);
 void bind_kernel(pybind11::module_& module);
+void bind_packings(pybind11::module_& module);
 
 }  // namespace mimpact::python

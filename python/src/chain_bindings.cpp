@@ -13,6 +13,7 @@
 #include "mimpact/chains/hertz.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/kernel/parameters.hpp"
+#include "scene_arguments.hpp"
 
 namespace py = pybind11;
 
@@ -36,15 +37,10 @@ struct ChainResult {
   py::dict summary;                // everything summary.json holds
 };
 
-// A scene file's path (str or os.PathLike) or a dict with the keys of a scene file.
 chains::ChainScene load_scene(const py::object& scene) {
-  if (py::isinstance<py::dict>(scene))
-    return chains::parse_chain_scene(to_json(scene, "scene").dump(), "scene");
-  if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__"))
-    return chains::load_chain_scene(
-        py::module_::import("os").attr("fspath")(scene).cast<std::string>());
-  throw InvalidInput("scene = " + py::repr(scene).cast<std::string>() +
-                     " is not allowed; allowed: a scene file's path or a dict with its keys");
+  return load_scene_argument(
+      scene, [](const std::string& text) { return chains::parse_chain_scene(text, "scene"); },
+      [](const std::string& path) { return chains::load_chain_scene(path); });
 }
 
 // A scene file as a dict, checked as run_chain would check it.
@@ -58,25 +54,6 @@ py::object read_scene(const py::object& path_argument) {
 
 // Parses and builds the scene without running it: the errors run_chain would raise first.
 void check_scene(const py::object& scene) { chains::build_chain_model(load_scene(scene)); }
-
-// [sample][column] as a samples x columns array
-Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns) {
-  Eigen::MatrixXd matrix(Eigen::Index(rows.size()), Eigen::Index(columns));
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    for (std::size_t c = 0; c < columns; ++c) matrix(Eigen::Index(r), Eigen::Index(c)) = rows[r][c];
-  return matrix;
-}
-
-py::dict series_dict(const chains::TimeSeries& series) {
-  py::dict dict;
-  dict["time"] = Eigen::VectorXd(
-      Eigen::Map<const Eigen::VectorXd>(series.time.data(), Eigen::Index(series.time.size())));
-  dict["contacts"] = series.contacts;
-  dict["forces"] = table(series.force, series.contacts.size());
-  dict["bodies"] = series.bodies;
-  dict["velocities"] = table(series.velocity, series.bodies.size());
-  return dict;
-}
 
 ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p) {
   const chains::ChainScene scene = load_scene(scene_argument);

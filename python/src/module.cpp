@@ -21,4 +21,5 @@ PYBIND11_MODULE(_mimpact, module) {
   });
   mimpact::python::bind_kernel(module);
   mimpact::python::bind_chains(module);
+  mimpact::python::bind_packings(module);
 }

@@ -1,0 +1,38 @@
+#include "scene_arguments.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+
+namespace mimpact::python {
+
+// [sample][column] as a samples x columns array
+Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns) {
+  Eigen::MatrixXd matrix(Eigen::Index(rows.size()), Eigen::Index(columns));
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t c = 0; c < columns; ++c) matrix(Eigen::Index(r), Eigen::Index(c)) = rows[r][c];
+  return matrix;
+}
+
+py::dict series_dict(const chains::TimeSeries& series) {
+  py::dict dict;
+  dict["time"] = Eigen::VectorXd(
+      Eigen::Map<const Eigen::VectorXd>(series.time.data(), Eigen::Index(series.time.size())));
+  dict["contacts"] = series.contacts;
+  dict["forces"] = table(series.force, series.contacts.size());
+  dict["bodies"] = series.bodies;
+  const Eigen::MatrixXd velocities =
+      table(series.velocity, series.bodies.size() * std::size_t(series.dimension));
+  if (series.dimension == 1) {
+    dict["velocities"] = velocities;
+  } else {  // samples x bodies x components
+    dict["velocities"] = py::module_::import("numpy")
+                             .attr("asarray")(velocities)
+                             .attr("reshape")(velocities.rows(), Eigen::Index(series.bodies.size()),
+                                              series.dimension);
+  }
+  return dict;
+}
+
+}  // namespace mimpact::python

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "json_conversion.hpp"
+#include "mimpact/chains/time_series.hpp"
+#include "mimpact/common/error.hpp"
+
+// What the chain and packing bindings share: scenes given as a path or a dict, and time series
+// as NumPy arrays.
+namespace mimpact::python {
+
+// A scene file's path (str or os.PathLike), read by load(path), or a dict with the keys of a
+// scene file, read by parse(text) with the same messages.
+template <class Parse, class Load>
+auto load_scene_argument(const pybind11::object& scene, Parse&& parse, Load&& load) {
+  namespace py = pybind11;
+  if (py::isinstance<py::dict>(scene)) return parse(to_json(scene, "scene").dump());
+  if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__"))
+    return load(py::module_::import("os").attr("fspath")(scene).cast<std::string>());
+  throw InvalidInput("scene = " + py::repr(scene).cast<std::string>() +
+                     " is not allowed; allowed: a scene file's path or a dict with its keys");
+}
+
+// [sample][column] as a samples x columns array
+Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns);
+
+// {"time", "contacts", "forces" (samples x contacts), "bodies", "velocities" (samples x bodies,
+// or samples x bodies x 2 in the plane)}
+pybind11::dict series_dict(const chains::TimeSeries& series);
+
+}  // namespace mimpact::python

@@ -1,0 +1,50 @@
+"""run_packing(): the packings of `mimpact packing` from Python."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import mimpact
+from conftest import SOURCE, read_scene
+
+HEXAGON = "examples/scenes/packings/hexagonal_10x10.json"
+
+
+def test_run_packing_gives_the_command_lines_velocities(cli, tmp_path):
+    result = mimpact.run_packing(SOURCE / HEXAGON)
+    subprocess.run([cli, "packing", str(SOURCE / HEXAGON), "--out", str(tmp_path / "out"),
+                    "--quiet"], check=True)
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    np.testing.assert_array_equal(result.post_impact_velocities,
+                                  np.array(summary["post_impact_velocities"]))
+    assert result.post_impact_velocities.shape == (101, 2)
+    assert result.contact_bodies.shape == (262, 2)
+    # the impulses the bodies received sum to zero: momentum is kept to round-off
+    momentum = result.body_impulses.sum(axis=0)
+    np.testing.assert_allclose(momentum, 0.0, atol=1e-15)
+    assert result.frames["velocities"].shape[1:] == (101, 2)
+
+
+def test_a_dict_scene_and_delta_p(tmp_path):
+    scene = read_scene(HEXAGON)
+    scene["impact"] = {"delta_p": 1e-5}
+    scene.pop("record")
+    coarse = mimpact.run_packing(scene)
+    fine = mimpact.run_packing(scene, delta_p=2.5e-6)
+    assert coarse.delta_p == 1e-5 and fine.delta_p == 2.5e-6
+    adaptive = mimpact.run_packing(read_scene(HEXAGON))
+    # first order: a quarter of the step, about a quarter of the error
+    coarse_error = abs(coarse.post_impact_velocities - adaptive.post_impact_velocities).max()
+    fine_error = abs(fine.post_impact_velocities - adaptive.post_impact_velocities).max()
+    assert 3.0 < coarse_error / fine_error < 5.0
+
+
+def test_bad_input_is_a_value_error_naming_the_field():
+    scene = read_scene(HEXAGON)
+    scene["strikers"][0]["target"] = [0, 12]
+    with pytest.raises(ValueError, match=r"strikers\[0\]\.target\[1\] = 12 is invalid"):
+        mimpact.run_packing(scene)
+    with pytest.raises(ValueError, match="scene = 3 is not allowed"):
+        mimpact.run_packing(3)
