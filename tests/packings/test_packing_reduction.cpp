@@ -110,3 +110,42 @@ TEST(PackingReduction, HexagonalPackingOfOneRowIsAChain) {
 
 }  // namespace
 }  // namespace mimpact::testing
+
+namespace mimpact::testing {
+namespace {
+
+// Strikers arriving at different times: successive impacts, located by the event-driven scheme, as
+// in the chain of the struck row (item 2).
+TEST(PackingReduction, StaggeredStrikersMakeTheChainsImpacts) {
+  const std::string impact = R"("impact": {"integrator": "adaptive", "tolerance": 1e-9})";
+  const PackingCase packing =
+      run_packing("{" + kSteel +
+                  R"(, "lattice": {"type": "square", "rows": 3, "columns": 6, "radius": 0.005},
+           "strikers": [{"target": [1, 0], "radius": 0.005, "velocity": [1.0, 0.0], "gap": 1e-4},
+                        {"target": [1, 5], "radius": 0.005, "velocity": [-1.5, 0.0], "gap": 6e-4}], )" +
+                  impact + "}");
+  const chains::ChainScene scene =
+      chains::parse_chain_scene("{" + kSteel +
+                                    R"(, "chain": {"segments": [{"count": 6, "radius": 0.005}]},
+               "strikers": [{"side": "left", "radius": 0.005, "velocity": 1.0, "gap": 1e-4},
+                            {"side": "right", "radius": 0.005, "velocity": 1.5, "gap": 6e-4}], )" +
+                                    impact + "}",
+                                "chain");
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  const chains::ImpactOutcome chain = chains::simulate_chain_impact(model, scene.impact_options());
+  // the left striker's impact sends the last bead at the right striker: they meet before the
+  // striker would reach a bead at rest, and the beads meet again twice (4 impacts)
+  ASSERT_GE(chain.impact_times.size(), 2u);
+  ASSERT_EQ(packing.run.impact.impact_times.size(), chain.impact_times.size());
+  const Eigen::VectorXd& v = packing.run.impact.velocity_after;
+  const Eigen::Index left = packing.model.bead_count, right = left + 1;
+  EXPECT_NEAR(v(2 * left), chain.velocity_after(0), 1e-12);
+  EXPECT_NEAR(v(2 * right), chain.velocity_after(7), 1e-12);
+  for (Eigen::Index k = 0; k < 6; ++k)
+    EXPECT_NEAR(v(2 * (6 + k)), chain.velocity_after(k + 1), 1e-12) << k;
+  for (std::size_t k = 0; k < chain.impact_times.size(); ++k)
+    EXPECT_NEAR(packing.run.impact.impact_times[k], chain.impact_times[k], 1e-15) << k;
+}
+
+}  // namespace
+}  // namespace mimpact::testing
