@@ -128,14 +128,17 @@ std::optional<double> take_delta_p(kernel::Parameters& impact, const std::string
   return options.impulse_steps.delta_p;
 }
 
+nlohmann::json parse_scene_document(std::string_view text, const std::string& source) {
+  try {
+    return json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& error) {
+    throw InvalidInput(source + ": malformed JSON: " + error.what());
+  }
+}
+
 ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
   const SceneChecks checks(source);
-  json document;
-  try {
-    document = json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& error) {
-    checks.fail(std::string("malformed JSON: ") + error.what());
-  }
+  json document = parse_scene_document(text, source);
   lend_material(document, {"/chain/segments", "/strikers", "/wall"}, source);
   ChainScene scene;
   kernel::read_fields(document, scene, {.name = source, .unknown = "key", .top = "the top level"});

@@ -85,12 +85,7 @@ void check_strikers(const PackingScene& scene, const SceneChecks& checks) {
 PackingScene parse_packing_scene(std::string_view text, const std::string& source,
                                  const std::filesystem::path& directory) {
   const SceneChecks checks(source);
-  json document;
-  try {
-    document = json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& error) {
-    checks.fail(std::string("malformed JSON: ") + error.what());
-  }
+  json document = chains::parse_scene_document(text, source);
   chains::lend_material(document, {"/lattice", "/beads", "/walls", "/strikers"}, source);
   PackingScene scene;
   kernel::read_fields(document, scene, {.name = source, .unknown = "key", .top = "the top level"});

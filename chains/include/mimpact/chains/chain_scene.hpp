@@ -217,6 +217,9 @@ struct ChainScene {
   numerics::LzbOptions lzb_options(double impulse_step) const;
 };
 
+// A scene file's JSON (comments allowed); InvalidInput "SOURCE: malformed JSON: ..." otherwise.
+nlohmann::json parse_scene_document(std::string_view text, const std::string& source);
+
 // Copies the top-level "material" of a scene document into every body that names none, so
 // that one field list reads every body alike. `bodies` are JSON pointers to a body or an array
 // of bodies ("/chain/segments"); throws InvalidInput naming the body when it needs the
