@@ -155,8 +155,9 @@ class LzbImpulseIntegrator {
   std::vector<double> impulse_carry_;  // the low-order bits the sum of impulse_ has lost
   std::vector<double> compression_work_, max_force_, time_of_max_, work_;
   std::unique_ptr<bool[]> in_impact_;
-  std::vector<Eigen::Index> active_;  // contacts taking part, the first ones listed
-  std::size_t initially_active_ = 0;  // how many take part at the start
+  std::vector<Eigen::Index> active_;        // contacts taking part, the first ones listed
+  std::vector<Eigen::Index> merge_buffer_;  // where contacts that join are merged in order
+  std::size_t initially_active_ = 0;        // how many take part at the start
   ImpactSampler sampler_;
 };
 
