@@ -178,7 +178,7 @@ def chain_length_figure(rows, path):
 
 def packing_section(scale_json):
     """The cost of planar packings' impacts against their size, from scripts/packing_scale.py's
-    runs (a separate study: its runs take a quarter of an hour); empty before it has run."""
+    runs (a separate study: its runs take about ten minutes); empty before it has run."""
     if not scale_json.exists():
         return ""
     sizes = json.loads(scale_json.read_text())

@@ -9,8 +9,8 @@ before it: its own first-order estimate); the ratio of successive differences ch
 the runs are in the first-order regime. Writes docs/results/packing_scale.md and
 docs/results/packings/scale.png.
 
-    /usr/bin/python3 scripts/packing_scale.py            # sides 16, 32, 56: about 3 minutes
-    /usr/bin/python3 scripts/packing_scale.py --full     # and 100 x 100: about 15 more
+    /usr/bin/python3 scripts/packing_scale.py            # sides 16, 32, 56: about 2 minutes
+    /usr/bin/python3 scripts/packing_scale.py --full     # and 100 x 100: about 8 more
 
 Run with the compiled module on the path (PYTHONPATH=build/release/python).
 """
