@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "impact_input.hpp"
+#include "impulse_step_rules.hpp"
 #include "mimpact/common/error.hpp"
 
 namespace mimpact::numerics {
@@ -25,91 +26,9 @@ double LzbOptions::energy_tolerance(double h_jj) const {
   return velocity * velocity / (2.0 * h_jj);
 }
 
-namespace {
-
-// Column access to H, so the step loop is written once for sparse and dense storage.
-// Compressed sparse columns read directly: the step loop touches only the columns of the
-// contacts taking part in the impact.
-struct SparseDelassus {
-  explicit SparseDelassus(const Eigen::SparseMatrix<double>& compressed)
-      : start(compressed.outerIndexPtr()),
-        row(compressed.innerIndexPtr()),
-        value(compressed.valuePtr()),
-        rows(compressed.rows()) {}
-  template <class Visit>
-  void for_each_in_column(Index j, Visit&& visit) const {
-    for (int k = start[j]; k < start[j + 1]; ++k) visit(Index(row[k]), value[k]);
-  }
-  const int* start;
-  const int* row;
-  const double* value;
-  Index rows;
-};
-
-struct DenseDelassus {
-  const Eigen::MatrixXd& H;
-  template <class Visit>
-  void for_each_in_column(Index j, Visit&& visit) const {
-    const double* column = H.col(j).data();
-    for (Index i = 0; i < H.rows(); ++i) visit(i, column[i]);
-  }
-};
-
-// x^p for x > 0, through exp2 and log2: a few ulp from std::pow and a quarter cheaper,
-// which matters because the step loop evaluates one power per contact in the impact.
-inline double power_of(double x, double p) { return std::exp2(p * std::log2(x)); }
-
-// The time the primary contact takes to absorb its principal step delta_p: the integral of
-// dP / F(E(P)) with F = c E^a and E linear in P from e0 to e1 (e1 not yet clamped at 0).
-// The paper's left-point rule dt = delta_p / F(e0) misses a fixed share of the integrable
-// singularity where a contact starts or ends (F -> 0), so its times converge only as
-// delta_p^0.4; this rule is exact for the power law there and equal to the paper's rule in
-// the smooth interior. Written with the known F(e0) so only expm1 and log1p are needed.
-double primary_step_duration(double delta_p, double e0, double e1, double primary_force,
-                             double coefficient, double power) {
-  if (e0 <= 0.0) {  // the primary was entering compression: E grows from 0 to e1
-    if (e1 <= 0.0) return delta_p / primary_force;  // unresolved: the paper's rule
-    return delta_p / ((1.0 - power) * coefficient * std::pow(e1, power));
-  }
-  double length = delta_p;
-  if (e1 < 0.0) {  // E reaches 0 inside the step; the rest of it carries no force
-    length = std::isinf(e1) ? 0.0 : delta_p * e0 / (e0 - e1);
-    e1 = 0.0;
-  }
-  const double r = (e1 - e0) / e0;
-  const double q = 1.0 - power;
-  const double factor = std::abs(r) < 1e-12 ? 1.0 : std::expm1(q * std::log1p(r)) / (q * r);
-  return length / primary_force * factor;
-}
-
-// Below this share of a step, the end of the primary's compression is not worth a step of
-// its own: the error of treating the step as expansion is of order share^2.
-constexpr double kSmallestCut = 1e-6;
-
-// The share s in [0, 1] of the step at which the primary contact's phase ends, so that the
-// step can stop exactly there: u_pi crossing 0 (compression ends), or E_pi reaching the
-// level where it is released (0, or (1 - e^2) W_c for mono-stiffness). Within a step u_pi
-// is linear in s, u0 + du s, and the work trapezoidal, so E(s) = E0 - f dp (u0 s + du s^2/2)
-// in expansion, with f = 1/e^2 for bi-stiffness and 1 for mono-stiffness.
-double primary_phase_end(double u0, double du, double e0, double dp, double f, double level,
-                         bool released_at_once) {
-  if (u0 < 0.0 && u0 + du > 0.0) {
-    const double crossing = -u0 / du;
-    if (crossing >= kSmallestCut) return crossing;
-  } else if (u0 + 0.5 * du < 0.0) {
-    return 1.0;  // compression all along
-  }
-  // nothing to give back (e = 0, or E already at its level): release where the step's work
-  // is zero, at once when u0 >= 0
-  if (released_at_once || level >= e0) return std::clamp(-2.0 * u0 / du, 0.0, 1.0);
-  const double a = 0.5 * f * dp * du, b = f * dp * u0, c = level - e0;
-  if (a + b + c <= 0.0) return 1.0;  // E stays above its release level
-  const double discriminant = b * b - 4.0 * a * c;
-  const double denominator = -b - std::sqrt(std::max(discriminant, 0.0));
-  return denominator < 0.0 ? std::clamp(2.0 * c / denominator, 0.0, 1.0) : 1.0;
-}
-
-}  // namespace
+using detail::DenseDelassus;
+using detail::power_of;
+using detail::SparseDelassus;
 
 LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options) : options_(std::move(options)) {
   validate(options_, "LZB options");
@@ -322,7 +241,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
           in_expansion_mono
               ? (1.0 - e * e) * (u[primary] < 0.0 ? energy[primary] : compression_work[primary])
               : 0.0;
-      const double share = primary_phase_end(u[primary], du, energy[primary], delta_p,
+      const double share = detail::phase_end(u[primary], du, energy[primary], delta_p,
                                              in_expansion_mono ? 1.0 : inverse_e2[primary],
                                              release_level, !in_expansion_mono && e == 0.0);
       if (share < 1.0)
@@ -387,7 +306,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       std::copy(merged, merged + active_count, active);
     }
 
-    time += primary_step_duration(step_impulse[primary], primary_energy_start, primary_energy_end,
+    time += detail::step_duration(step_impulse[primary], primary_energy_start, primary_energy_end,
                                   primary_force, coefficient[primary], power[primary]);
     principal += step_impulse[primary];
     ++step;

@@ -131,9 +131,9 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
   json summary{
       {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.lzb.status)},
       {"method", scene.method == chains::Method::lzb ? "lzb" : "compliant"},
-      {"integrator", scene.method == chains::Method::compliant ? json(nullptr)
-                     : scene.adaptive()                        ? json("adaptive")
-                                                               : json("impulse-step")},
+      {"integrator", scene.method == chains::Method::compliant
+                         ? json(nullptr)
+                         : json(enum_name(scene.impact_options().integrator))},
       {"delta_p", run.delta_p ? json(*run.delta_p) : json(nullptr)},
       {"tolerance", scene.adaptive() ? json(scene.impact_options().adaptive.tolerance)
                     : scene.method == chains::Method::compliant ? json(scene.compliant.tolerance)

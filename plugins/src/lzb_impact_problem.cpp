@@ -23,8 +23,8 @@ void check_chosen_integrator(const LzbImpactOptions& options) {
                        std::to_string(value) + " is an option of the " +
                        (adaptive ? "impulse-step" : "adaptive") + " integrator; allowed: " +
                        (adaptive ? "\"tolerance\" with \"integrator\": \"adaptive\""
-                                 : "\"delta_p\" with \"integrator\": \"impulse-step\", or "
-                                   "\"integrator\": \"adaptive\""));
+                                 : "\"delta_p\" with \"integrator\": \"impulse-step\" or "
+                                   "\"asynchronous\", or \"integrator\": \"adaptive\""));
   };
   if (adaptive) {
     if (options.impulse_steps.delta_p != defaults.impulse_steps.delta_p)
@@ -54,6 +54,7 @@ numerics::LzbAdaptiveOptions LzbImpactOptions::adaptive_options() const {
 LzbImpactProblem::LzbImpactProblem(LzbImpactOptions options)
     : options_(checked(std::move(options))),
       impulse_steps_(options_.impulse_steps),
+      asynchronous_(options_.impulse_steps),
       adaptive_(options_.adaptive_options()) {}
 
 void LzbImpactProblem::check_law(const kernel::NonSmoothLaw& law, const std::string& which) const {
@@ -120,6 +121,7 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
     const std::vector<Index>& sampled = options_.impulse_steps.sampled_contacts;
     if (!sampled.empty()) {
       impulse_steps_.set_sampled_contacts(sampled_places(closed, sampled));
+      asynchronous_.set_sampled_contacts(sampled_places(closed, sampled));
       adaptive_.set_sampled_contacts(sampled_places(closed, sampled));
     }
   }
@@ -161,8 +163,8 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   return report;
 }
 
-// The chosen integrator on H, dense for small impacts. The impulse steps take delta_p as a
-// share of the impact's natural impulse when relative_delta_p is set.
+// The chosen integrator on H, dense for small impacts. The impulse steps (either kind) take
+// delta_p as a share of the impact's natural impulse when relative_delta_p is set.
 numerics::LzbResult LzbImpactProblem::integrate(const numerics::Delassus& delassus,
                                                 const Eigen::VectorXd& u_minus,
                                                 numerics::ImpactObserver* observer) {
@@ -173,9 +175,14 @@ numerics::LzbResult LzbImpactProblem::integrate(const numerics::Delassus& delass
   if (options_.relative_delta_p > 0.0) {
     const double natural_impulse =
         (-u_minus).cwiseMax(0.0).cwiseQuotient(Eigen::VectorXd(delassus.H().diagonal())).maxCoeff();
-    if (natural_impulse > 0.0)
+    if (natural_impulse > 0.0) {
       impulse_steps_.set_delta_p(options_.relative_delta_p * natural_impulse);
+      asynchronous_.set_delta_p(options_.relative_delta_p * natural_impulse);
+    }
   }
+  if (options_.integrator == LzbIntegrator::asynchronous)
+    return dense ? asynchronous_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
+                 : asynchronous_.integrate(delassus.H(), u_minus, laws_, observer);
   return dense ? impulse_steps_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
                : impulse_steps_.integrate(delassus.H(), u_minus, laws_, observer);
 }

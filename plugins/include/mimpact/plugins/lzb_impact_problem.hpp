@@ -8,25 +8,29 @@
 #include "mimpact/kernel/one_step_ns_problem.hpp"
 #include "mimpact/numerics/delassus.hpp"
 #include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+#include "mimpact/numerics/lzb_asynchronous_integrator.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::plugins {
 
 // How the LZB impact is integrated: by the impulse steps of Nguyen & Brogliato (2011), first
-// order in delta_p, or by the adaptive integration of their continuous limit to a tolerance
+// order in delta_p; by the same steps taken by each contact at its own pace
+// (numerics::LzbAsynchronousIntegrator, for impacts whose loaded contacts far outnumber the
+// front's: packings); or by the adaptive integration of their continuous limit to a tolerance
 // (numerics::LzbAdaptiveIntegrator).
-enum class LzbIntegrator { impulse_step, adaptive };
+enum class LzbIntegrator { impulse_step, asynchronous, adaptive };
 
 constexpr auto enum_names(LzbIntegrator) {
   using Name = std::pair<LzbIntegrator, std::string_view>;
   return std::array{Name{LzbIntegrator::impulse_step, "impulse-step"},
+                    Name{LzbIntegrator::asynchronous, "asynchronous"},
                     Name{LzbIntegrator::adaptive, "adaptive"}};
 }
 
 struct LzbImpactOptions {
   LzbIntegrator integrator = LzbIntegrator::impulse_step;
-  // The impulse steps' options; max_steps and sampled_contacts (interactions of the system)
-  // serve the adaptive integrator too.
+  // The impulse steps' options, synchronous or asynchronous; max_steps and sampled_contacts
+  // (interactions of the system) serve the adaptive integrator too.
   numerics::LzbOptions impulse_steps;
   // The adaptive integrator's options but those two.
   numerics::LzbAdaptiveOptions adaptive;
@@ -83,6 +87,7 @@ class LzbImpactProblem : public kernel::ImpactProblem {
 
   LzbImpactOptions options_;
   numerics::LzbImpulseIntegrator impulse_steps_;
+  numerics::LzbAsynchronousIntegrator asynchronous_;
   numerics::LzbAdaptiveIntegrator adaptive_;
   std::vector<numerics::ContactLaw> laws_;
   numerics::ImpactObserver* observer_ = nullptr;

@@ -1,0 +1,66 @@
+#pragma once
+
+// What the LZB integrators of steps share (lzb_impulse_integrator.cpp,
+// lzb_asynchronous_integrator.cpp): column access to H, the power x^p, and the synchronous
+// steps' two exact sub-step rules of docs/model.md, section 6.
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <cmath>
+
+namespace mimpact::numerics::detail {
+
+// Column access to H, so the step loops are written once for sparse and dense storage.
+// Compressed sparse columns read directly: a step touches only the columns of the contacts
+// it updates.
+struct SparseDelassus {
+  explicit SparseDelassus(const Eigen::SparseMatrix<double>& compressed)
+      : start(compressed.outerIndexPtr()),
+        row(compressed.innerIndexPtr()),
+        value(compressed.valuePtr()),
+        rows(compressed.rows()) {}
+  template <class Visit>
+  void for_each_in_column(Eigen::Index j, Visit&& visit) const {
+    for (int k = start[j]; k < start[j + 1]; ++k) visit(Eigen::Index(row[k]), value[k]);
+  }
+  const int* start;
+  const int* row;
+  const double* value;
+  Eigen::Index rows;
+};
+
+struct DenseDelassus {
+  const Eigen::MatrixXd& H;
+  template <class Visit>
+  void for_each_in_column(Eigen::Index j, Visit&& visit) const {
+    const double* column = H.col(j).data();
+    for (Eigen::Index i = 0; i < H.rows(); ++i) visit(i, column[i]);
+  }
+};
+
+// x^p for x > 0, through exp2 and log2: a few ulp from std::pow and a quarter cheaper,
+// which matters because the step loops evaluate one power per contact updated.
+inline double power_of(double x, double p) { return std::exp2(p * std::log2(x)); }
+
+// The time a contact takes to absorb an impulse step delta_p: the integral of dP / F(E(P))
+// with F = c E^a and E linear in P from e0 to e1 (e1 not yet clamped at 0), `force` being
+// F(e0). The paper's left-point rule dt = delta_p / F(e0) misses a fixed share of the
+// integrable singularity where a contact starts or ends (F -> 0), so its times converge only
+// as delta_p^0.4; this rule is exact for the power law there and equal to the paper's rule in
+// the smooth interior.
+double step_duration(double delta_p, double e0, double e1, double force, double coefficient,
+                     double power);
+
+// Below this share of a step, the end of a compression is not worth a step of its own: the
+// error of treating the step as expansion is of order share^2.
+constexpr double kSmallestCut = 1e-6;
+
+// The share s in [0, 1] of the step at which a contact's phase ends, so that the step can
+// stop exactly there: u crossing 0 (compression ends), or E reaching the level where it is
+// released (0, or (1 - e^2) W_c for mono-stiffness). Within a step u is linear in s,
+// u0 + du s, and the work trapezoidal, so E(s) = E0 - f dp (u0 s + du s^2/2) in expansion,
+// with f = 1/e^2 for bi-stiffness and 1 for mono-stiffness.
+double phase_end(double u0, double du, double e0, double dp, double f, double level,
+                 bool released_at_once);
+
+}  // namespace mimpact::numerics::detail
