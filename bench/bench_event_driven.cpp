@@ -51,7 +51,7 @@ BENCHMARK(BM_CradleImpulseSteps)->Unit(benchmark::kMillisecond);
 void BM_CradleAdaptive(benchmark::State& state) {
   plugins::LzbImpactOptions impacts;
   impacts.integrator = plugins::LzbIntegrator::adaptive;
-  impacts.adaptive.tolerance = double(state.range(0)) * 1e-12;
+  impacts.tolerance = double(state.range(0)) * 1e-12;
   swing_one_second(state, impacts);
 }
 BENCHMARK(BM_CradleAdaptive)->Arg(1000)->Arg(100)->Unit(benchmark::kMillisecond);

@@ -70,7 +70,7 @@ void c1_through_kernel(benchmark::State& state, const plugins::LzbImpactOptions&
 // event-driven integrator, the LZB impact problem, Delassus assembly, the simulation loop.
 void BM_C1ThroughKernel(benchmark::State& state) {
   plugins::LzbImpactOptions options;
-  options.impulse_steps.delta_p = 1e-6;
+  options.delta_p = 1e-6;
   c1_through_kernel(state, options);
 }
 BENCHMARK(BM_C1ThroughKernel)->Unit(benchmark::kMillisecond);
@@ -81,7 +81,7 @@ BENCHMARK(BM_C1ThroughKernel)->Unit(benchmark::kMillisecond);
 void BM_C1Adaptive(benchmark::State& state) {
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
-  options.adaptive.tolerance = 1e-6;
+  options.tolerance = 1e-6;
   c1_through_kernel(state, options);
 }
 BENCHMARK(BM_C1Adaptive)->Unit(benchmark::kMillisecond);
@@ -94,7 +94,7 @@ void BM_ChainLengthAdaptive(benchmark::State& state) {
   const chains::ChainModel model = c1_like_chain(int(state.range(0)));
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
-  options.adaptive.tolerance = 1e-6;
+  options.tolerance = 1e-6;
   chains::ImpactOutcome impact;
   for (auto _ : state) {
     impact = chains::simulate_chain_impact(model, options);

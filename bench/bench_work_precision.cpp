@@ -49,13 +49,15 @@ Outcome outcome_of(const chains::ImpactOutcome& impact) {
 
 Outcome run_lzb(const Case& c, const chains::ChainModel& model, double share) {
   const double delta_p = share * chains::natural_impulse(model);
-  return outcome_of(chains::simulate_chain_impact(model, c.scene.lzb_options(delta_p)));
+  numerics::LzbOptions options = c.scene.impact.impulse_step_options();
+  options.delta_p = delta_p;
+  return outcome_of(chains::simulate_chain_impact(model, options));
 }
 
 Outcome run_adaptive(const chains::ChainModel& model, double tolerance) {
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
-  options.adaptive.tolerance = tolerance;
+  options.tolerance = tolerance;
   return outcome_of(chains::simulate_chain_impact(model, options));
 }
 

@@ -57,8 +57,10 @@ void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
 // What the report's second line says of the method.
 std::string method_line(const chains::ChainScene& scene, std::optional<double> delta_p) {
   if (scene.adaptive())
-    return "adaptive LZB, tolerance " + to_text(scene.impact_options().adaptive.tolerance);
+    return "adaptive LZB, tolerance " + to_text(scene.impact.adaptive_tolerance());
   if (delta_p) return "LZB impulse steps, delta_p = " + to_text(*delta_p) + " N s";
+  if (scene.impact.relative_delta_p)
+    return "LZB impulse steps, relative_delta_p = " + to_text(*scene.impact.relative_delta_p);
   return "compliant contacts integrated in time";
 }
 
@@ -81,7 +83,6 @@ void write_results(const nlohmann::ordered_json& summary, const chains::TimeSeri
 
 int chain_command(const std::vector<std::string>& arguments) {
   std::string scene_file, out_dir;
-  std::optional<double> delta_p_option;
   std::vector<double> tolerance;
   po::options_description visible(
       "mimpact chain SCENE.json: the multiple impact of a granular chain");
@@ -101,18 +102,13 @@ int chain_command(const std::vector<std::string>& arguments) {
 
   chains::ChainScene scene = chains::load_chain_scene(scene_file);
   const chains::ChainModel model = chains::build_chain_model(scene);
-  if (values.count("delta-p")) delta_p_option = values["delta-p"].as<double>();
-  std::optional<double> delta_p = delta_p_option ? delta_p_option : scene.delta_p;
+  chains::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
+  if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
+  scene.impact = chains::resolve_impact(scene.impact, scene.method, overrides, scene_file);
+  const bool lzb = scene.method == chains::Method::lzb;
   std::optional<analysis::ConvergenceStudy> study;
   std::optional<analysis::ToleranceStudy> tolerance_study;
-  const bool lzb = scene.method == chains::Method::lzb;
-  if (!lzb && delta_p_option)
-    throw InvalidInput("--delta-p is the step of the LZB method; " + scene_file +
-                       " has method \"compliant\"");
-  if (scene.adaptive() && delta_p_option)
-    throw InvalidInput("--delta-p chooses the step of the impulse-step integrator; " + scene_file +
-                       " has \"integrator\": \"adaptive\", whose accuracy is impact.tolerance");
-  if (!tolerance.empty() && !delta_p_option && chains::uses_tolerance_study(scene)) {
+  if (!tolerance.empty() && !overrides.delta_p && chains::uses_tolerance_study(scene)) {
     tolerance_study = analysis::study_tolerance(
         chains::impact_problem(model),
         chains::tolerance_study_options(scene, {.tolerance = tolerance, .max_rows = 8}));
@@ -120,13 +116,13 @@ int chain_command(const std::vector<std::string>& arguments) {
       throw Error(scene_file + ": no tolerance down to " +
                   to_text(tolerance_study->finest_tolerance) +
                   " met --tolerance; loosen it; no output written");
-    scene.impact["integrator"] = "adaptive";
-    scene.impact["tolerance"] = tolerance_study->finest_tolerance;
+    scene.impact.integrator = plugins::LzbIntegrator::adaptive;
+    scene.impact.tolerance = tolerance_study->finest_tolerance;
   } else if (!tolerance.empty()) {
     study = analysis::study_convergence(chains::impact_problem(model),
                                         chains::convergence_options(scene, model,
                                                                     {.tolerance = tolerance,
-                                                                     .first = delta_p_option,
+                                                                     .first = overrides.delta_p,
                                                                      .max_rows = 12,
                                                                      .first_name = "--delta-p"}));
     if (!study->converged && !study->stopped.empty())
@@ -134,45 +130,32 @@ int chain_command(const std::vector<std::string>& arguments) {
     if (!study->converged)
       throw Error(scene_file + ": no delta_p down to " + to_text(study->rows.back().delta_p) +
                   " N s met --tolerance; loosen it or start smaller; no output written");
-    delta_p = study->rows.back().delta_p;
+    scene.impact.delta_p = study->rows.back().delta_p;
+    scene.impact.relative_delta_p.reset();
   }
-  if (lzb && !scene.adaptive() && !delta_p)
-    throw InvalidInput(scene_file +
-                       ": missing field impact.delta_p (or give --delta-p or --tolerance)");
-  if (!lzb) delta_p.reset();  // the compliant method has no delta_p
   const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
   if (recording && out_dir.empty() && !quiet)
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
   const bool writes_series = recording && !out_dir.empty();
 
-  const std::string delta_p_field = delta_p_option ? "--delta-p" : "impact.delta_p";
-  if (delta_p) {  // refused before it is warned of
-    chains::check_delta_p(model, *delta_p, scene.impact_options().impulse_steps.max_steps,
-                          delta_p_field);
-    warn_if_coarse(*delta_p, chains::natural_impulse(model), quiet);
+  if (lzb && !scene.adaptive()) {  // refused before it is warned of
+    const double delta_p =
+        chains::impulse_step(model, scene.impact, chains::impact_labels(overrides));
+    warn_if_coarse(delta_p, chains::natural_impulse(model), quiet);
   }
   ProgressReporter progress;
-  chains::ChainRun run =
-      chains::run_chain_scene(scene, model,
-                              {.delta_p = delta_p,
-                               .delta_p_field = delta_p_field,
-                               .record = writes_series,
-                               .progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr});
+  chains::ChainRun run = chains::run_chain_scene(
+      scene, model,
+      {.record = writes_series, .progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr});
   const chains::ImpactOutcome& impact = run.impact;
   const chains::TimeSeries& series = run.series;
-  nlohmann::ordered_json summary =
-      chains::chain_summary(model, impact, delta_p, writes_series ? &series : nullptr);
-  summary["method"] = lzb ? "lzb" : "compliant";
-  if (scene.adaptive()) {
-    summary["integrator"] = "adaptive";
-    summary["tolerance"] = scene.impact_options().adaptive.tolerance;
-  }
+  nlohmann::ordered_json summary = chains::run_summary(model, run);
   if (study) summary["convergence"] = chains::convergence_json(*study);
   if (tolerance_study) summary["convergence"] = chains::tolerance_json(*tolerance_study);
 
   if (!quiet)
     std::cerr << scene_file << ": "
-              << chains::chain_report(model, impact, method_line(scene, delta_p));
+              << chains::chain_report(model, impact, method_line(scene, run.delta_p));
   if (impact.lzb.status != numerics::LzbStatus::terminated)
     throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
   if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite() &&

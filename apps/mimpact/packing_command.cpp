@@ -50,20 +50,14 @@ int packing_command(const std::vector<std::string>& arguments) {
 
   const packings::PackingScene scene = packings::load_packing_scene(scene_file);
   const packings::PackingModel model = packings::build_packing_model(scene);
-  std::optional<double> delta_p;
-  if (values.count("delta-p")) delta_p = values["delta-p"].as<double>();
-  if (delta_p && scene.adaptive())
-    throw InvalidInput("--delta-p chooses the step of the impulse-step integrator; " + scene_file +
-                       " has \"integrator\": \"adaptive\", whose accuracy is impact.tolerance");
+  chains::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
+  if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
   const bool recording =
       !scene.record.contacts.empty() || !scene.record.beads.empty() || scene.record.frames > 0;
   if (recording && out_dir.empty() && !quiet)
     std::cerr << "mimpact packing: \"record\" needs --out DIR to write its series; ignored\n";
-  const packings::PackingRun run =
-      packings::run_packing_scene(scene, model,
-                                  {.delta_p = delta_p,
-                                   .delta_p_field = delta_p ? "--delta-p" : "impact.delta_p",
-                                   .record = recording && !out_dir.empty()});
+  const packings::PackingRun run = packings::run_packing_scene(
+      scene, model, {.impact = overrides, .record = recording && !out_dir.empty()});
   const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
   if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
   if (run.impact.lzb.status != numerics::LzbStatus::terminated)

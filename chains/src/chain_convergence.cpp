@@ -40,8 +40,8 @@ void check_lzb(const ChainScene& scene) {
 }  // namespace
 
 bool uses_tolerance_study(const ChainScene& scene) {
-  return scene.adaptive() ||
-         (scene.method == Method::lzb && !scene.delta_p && !scene.impact.contains("integrator"));
+  return scene.adaptive() || (scene.method == Method::lzb && !scene.impact.delta_p &&
+                              !scene.impact.relative_delta_p && !scene.impact.integrator);
 }
 
 analysis::ToleranceStudyOptions tolerance_study_options(const ChainScene& scene,
@@ -51,8 +51,8 @@ analysis::ToleranceStudyOptions tolerance_study_options(const ChainScene& scene,
   read_tolerance(request, options.epsilon_plus, options.epsilon);
   check_rows(request);
   options.max_rows = request.max_rows;
-  options.integrator = scene.impact_options().adaptive_options();
-  const bool scene_tolerance = scene.impact.contains("tolerance");
+  options.integrator = scene.impact.adaptive_options();
+  const bool scene_tolerance = scene.impact.tolerance.has_value();
   options.first_tolerance = request.first     ? *request.first
                             : scene_tolerance ? options.integrator.tolerance
                                               : std::min(options.epsilon_plus, options.epsilon);
@@ -71,15 +71,19 @@ analysis::ConvergenceOptions convergence_options(const ChainScene& scene, const 
                                                  const StudyRequest& request) {
   check_lzb(scene);
   analysis::ConvergenceOptions options;
-  options.first_delta_p = request.first   ? *request.first
-                          : scene.delta_p ? *scene.delta_p
-                                          : 1e-3 * natural_impulse(model);
-  check_delta_p(model, options.first_delta_p, scene.impact_options().impulse_steps.max_steps,
+  const plugins::LzbImpactOptions& impact = scene.impact;
+  options.first_delta_p = request.first    ? *request.first
+                          : impact.delta_p ? *impact.delta_p
+                          : impact.relative_delta_p
+                              ? *impact.relative_delta_p * contact_impulse(model)
+                              : 1e-3 * natural_impulse(model);
+  check_delta_p(model, options.first_delta_p, impact.impulse_steps.max_steps,
                 request.first ? request.first_name : "impact.delta_p");
   read_tolerance(request, options.epsilon_plus, options.epsilon);
   check_rows(request);
   options.max_halvings = request.max_rows;
-  options.integrator = scene.lzb_options(options.first_delta_p);
+  options.integrator = impact.impulse_step_options();
+  options.integrator.delta_p = options.first_delta_p;
   validate(options, "convergence study");
   return options;
 }

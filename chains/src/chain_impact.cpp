@@ -55,8 +55,9 @@ void add_pulses(const ChainModel& model, const TimeSeries& series,
 
 ImpactOutcome simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
                                     numerics::ImpactObserver* observer) {
-  return simulate_chain_impact(model, plugins::LzbImpactOptions{.impulse_steps = options},
-                               observer);
+  return simulate_chain_impact(
+      model, plugins::LzbImpactOptions{.delta_p = options.delta_p, .impulse_steps = options},
+      observer);
 }
 
 ImpactOutcome simulate_chain_impact(const ChainModel& model,

@@ -24,13 +24,11 @@ class Observers : public numerics::ImpactObserver {
 };
 
 ChainRun run_lzb(const ChainScene& scene, const ChainModel& model, const ChainRunOptions& options,
-                 bool record) {
+                 plugins::LzbImpactOptions impact, bool record) {
   ChainRun run;
-  plugins::LzbImpactOptions impact = scene.impact_options();
   if (!scene.adaptive()) {
-    run.delta_p = impulse_step(model, options.delta_p, scene.delta_p,
-                               impact.impulse_steps.max_steps, options.delta_p_field);
-    impact.impulse_steps = scene.lzb_options(*run.delta_p);
+    const double delta_p = impulse_step(model, impact, impact_labels(options.impact));
+    if (impact.delta_p) run.delta_p = delta_p;
   }
   ImpactRecorder recorder(model, scene.record);
   Observers observers;
@@ -45,6 +43,7 @@ ChainRun run_lzb(const ChainScene& scene, const ChainModel& model, const ChainRu
   run.impact = simulate_chain_impact(model, impact, observers.empty() ? nullptr : &observers);
   if (record) run.series = recorder.series(run.impact);
   run.recorded = record;
+  run.options = impact;
   return run;
 }
 
@@ -54,16 +53,28 @@ ChainRun run_chain_scene(const ChainScene& scene, const ChainModel& model,
                          const ChainRunOptions& options) {
   const bool record =
       options.record && (!scene.record.contacts.empty() || !scene.record.bodies.empty());
-  if (scene.method == Method::lzb) return run_lzb(scene, model, options, record);
-  if (options.delta_p)
-    throw InvalidInput(options.delta_p_field +
-                       " is the step of the LZB method; the scene has method \"compliant\"");
+  const plugins::LzbImpactOptions impact =
+      resolve_impact(scene.impact, scene.method, options.impact, scene.source);
+  if (scene.method == Method::lzb) return run_lzb(scene, model, options, impact, record);
   CompliantRun compliant = simulate_chain_compliant(model, scene.compliant, scene.record);
   ChainRun run;
+  run.method = Method::compliant;
   run.impact = std::move(compliant.impact);
   run.series = std::move(compliant.series);
   run.recorded = record;
   return run;
+}
+
+nlohmann::ordered_json run_summary(const ChainModel& model, const ChainRun& run) {
+  nlohmann::ordered_json summary =
+      chain_summary(model, run.impact, run.delta_p, run.recorded ? &run.series : nullptr);
+  summary["method"] = std::string(enum_name(run.method));
+  if (run.method != Method::lzb) return summary;
+  summary["integrator"] = std::string(enum_name(run.options.chosen_integrator()));
+  if (run.options.relative_delta_p) summary["relative_delta_p"] = *run.options.relative_delta_p;
+  if (run.options.chosen_integrator() == plugins::LzbIntegrator::adaptive)
+    summary["tolerance"] = run.options.adaptive_tolerance();
+  return summary;
 }
 
 }  // namespace mimpact::chains

@@ -13,6 +13,13 @@ namespace {
 
 using nlohmann::json;
 
+// a bound on the beads of a chain, so that every index fits an int (the memory a run may take
+// bounds them further: RunLimits)
+constexpr std::int64_t kMostBeads = 100'000'000;
+
+// larger than any scene needs: the text is held in memory while it is parsed
+constexpr std::uintmax_t kLargestSceneFile = 64u << 20;
+
 // rows of forces.csv a compliant run may write: 1e8 rows of a few contacts are gigabytes
 constexpr double kMaxRecordedSamples = 1e8;
 
@@ -20,6 +27,11 @@ constexpr double kMaxRecordedSamples = 1e8;
 void check_bodies(const ChainScene& scene, const SceneChecks& checks) {
   if (scene.chain.segments.empty())
     checks.fail("chain.segments must be a non-empty array of segments");
+  std::int64_t beads = 0;
+  for (const SegmentSpec& segment : scene.chain.segments) beads += segment.count;
+  if (beads > kMostBeads)
+    checks.fail("chain.segments hold " + std::to_string(beads) +
+                " beads in all; allowed: at most " + std::to_string(kMostBeads));
   if (scene.strikers.empty() || scene.strikers.size() > 2)
     checks.fail("strikers must be an array of one or two strikers");
   if (scene.strikers.size() == 2 && scene.strikers[0].side == scene.strikers[1].side)
@@ -104,49 +116,68 @@ void ContactSpec::check(const SceneChecks& checks) const {
         to_text(exponent));
 }
 
-double impulse_step(const ContactModel& model, std::optional<double> chosen,
-                    std::optional<double> scene_value, std::int64_t max_steps,
-                    const std::string& field) {
-  const std::optional<double> delta_p = chosen ? chosen : scene_value;
-  if (!delta_p)
+fields::Labels impact_labels(const ImpactOverrides& overrides) {
+  fields::Labels labels{.prefix = "impact."};
+  if (overrides.delta_p) labels.chosen.emplace_back("delta_p", overrides.delta_p_name);
+  return labels;
+}
+
+plugins::LzbImpactOptions resolve_impact(const plugins::LzbImpactOptions& impact, Method method,
+                                         const ImpactOverrides& overrides,
+                                         const std::string& source) {
+  plugins::LzbImpactOptions resolved = impact;
+  if (overrides.delta_p) resolved.delta_p = overrides.delta_p;
+  const fields::Labels labels = impact_labels(overrides);
+  // a scene keeps its LZB options beside the compliant ones ("method" picks), but a step asked
+  // of a compliant run is an error
+  if (method == Method::compliant && overrides.delta_p)
+    throw InvalidInput(overrides.delta_p_name + " = " + to_text(*overrides.delta_p) +
+                       " is the step of the LZB method; " + source +
+                       " has method \"compliant\" (its accuracy is compliant.tolerance)");
+  if (method == Method::compliant) return resolved;
+  resolved.check(source, labels);
+  return resolved;
+}
+
+double impulse_step(const ContactModel& model, const plugins::LzbImpactOptions& impact,
+                    const fields::Labels& labels) {
+  if (!impact.delta_p && !impact.relative_delta_p)
     throw InvalidInput(
-        "missing field impact.delta_p (the impulse steps' principal step, N s); or choose "
-        "\"integrator\": \"adaptive\" with a tolerance");
-  check_delta_p(model, *delta_p, max_steps, field);
-  return *delta_p;
-}
-
-std::optional<double> take_delta_p(kernel::Parameters& impact, const std::string& source) {
-  const plugins::LzbImpactOptions options = kernel::options_from<plugins::LzbImpactOptions>(
-      impact, {.name = source, .path = "impact", .unknown = "key"});
-  if (!impact.contains("delta_p")) return std::nullopt;
-  if (options.integrator == plugins::LzbIntegrator::adaptive)
-    throw InvalidInput(source + ": impact.delta_p = " + to_text(options.impulse_steps.delta_p) +
-                       " is the step of the impulse-step integrator; allowed with "
-                       "\"integrator\": \"adaptive\": impact.tolerance");
-  impact.erase("delta_p");
-  return options.impulse_steps.delta_p;
-}
-
-nlohmann::json parse_scene_document(std::string_view text, const std::string& source) {
-  try {
-    return json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& error) {
-    throw InvalidInput(source + ": malformed JSON: " + error.what());
+        "missing field impact.delta_p (the impulse steps' principal step, N s), or "
+        "impact.relative_delta_p; or choose \"integrator\": \"adaptive\" with a tolerance");
+  if (impact.delta_p) {
+    check_delta_p(model, *impact.delta_p, impact.impulse_steps.max_steps, labels("delta_p"));
+    return *impact.delta_p;
   }
+  const double delta_p = *impact.relative_delta_p * contact_impulse(model);
+  check_delta_p(model, delta_p, impact.impulse_steps.max_steps,
+                labels("relative_delta_p") + " x the natural impulse");
+  return delta_p;
 }
 
-ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
+kernel::JsonDocument parse_scene_document(std::string_view text, const std::string& source) {
+  return kernel::parse_json_document(text, source);
+}
+
+ChainScene read_chain_scene(json document, const std::string& source,
+                            const kernel::JsonLocations* locations) {
   const SceneChecks checks(source);
-  json document = parse_scene_document(text, source);
   lend_material(document, {"/chain/segments", "/strikers", "/wall"}, source);
   ChainScene scene;
-  kernel::read_fields(document, scene, {.name = source, .unknown = "key", .top = "the top level"});
+  kernel::read_fields(
+      document, scene,
+      {.name = source, .unknown = "key", .top = "the top level", .locations = locations});
+  scene.source = source;
   check_bodies(scene, checks);
-  scene.delta_p = take_delta_p(scene.impact, source);
+  scene.impact = resolve_impact(scene.impact, scene.method, {}, source);
   check_record(scene, checks);
   check_precompression(scene, checks);
   return scene;
+}
+
+ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
+  kernel::JsonDocument document = parse_scene_document(text, source);
+  return read_chain_scene(std::move(document.value), source, &document.locations);
 }
 
 int ChainScene::bead_count() const {
@@ -161,33 +192,19 @@ const StrikerSpec* ChainScene::striker(Side side) const {
   return nullptr;
 }
 
-plugins::LzbImpactOptions lzb_impact_options(const kernel::Parameters& impact,
-                                             std::optional<double> delta_p) {
-  plugins::LzbImpactOptions options =
-      kernel::options_from<plugins::LzbImpactOptions>(impact, {.name = "impact"});
-  if (delta_p) options.impulse_steps.delta_p = *delta_p;
-  return options;
-}
-
-plugins::LzbImpactOptions ChainScene::impact_options() const {
-  return lzb_impact_options(impact, delta_p);
-}
-
-bool ChainScene::adaptive() const {
-  return method == Method::lzb && impact_options().integrator == plugins::LzbIntegrator::adaptive;
-}
-
-numerics::LzbOptions ChainScene::lzb_options(double impulse_step) const {
-  numerics::LzbOptions options = impact_options().impulse_steps;
-  options.delta_p = impulse_step;
-  validate(options, "impact");
-  return options;
-}
-
 std::string read_scene_file(const std::filesystem::path& path) {
   std::error_code error;
-  if (std::filesystem::is_directory(path, error))
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status))
     throw InvalidInput(path.string() + ": is a directory; allowed: a scene file (JSON)");
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InvalidInput(path.string() +
+                       ": is not a regular file (a device or a pipe); allowed: a scene file");
+  const auto size = std::filesystem::file_size(path, error);
+  if (!error && size > kLargestSceneFile)
+    throw InvalidInput(path.string() + ": holds " + std::to_string(size) +
+                       " bytes; allowed: a scene file of at most 64 MB (bead lists belong in "
+                       "CSV files)");
   std::ifstream in(path);
   if (!in) throw InvalidInput(path.string() + ": cannot open the scene file for reading");
   std::ostringstream text;

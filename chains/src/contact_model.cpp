@@ -26,14 +26,36 @@ double impact_overlap(const ContactModel& model) {
   return smallest;
 }
 
-double natural_impulse(const ContactModel& model) {
-  double smallest = INFINITY;
+namespace {
+
+// m |v| of each moving body (its speed by stableNorm: |v| = 1e-170 does not square to 0)
+template <class Pick>
+double momentum(const ContactModel& model, double start, Pick pick) {
+  double chosen = start;
   const int d = model.dimension;
   for (Eigen::Index b = 0; b < model.body_count(); ++b) {
-    const double speed = model.velocity.segment(b * d, d).norm();
-    if (speed != 0.0) smallest = std::min(smallest, model.mass(b * d) * speed);
+    const double speed = model.velocity.segment(b * d, d).stableNorm();
+    if (speed != 0.0) chosen = pick(chosen, model.mass(b * d) * speed);
   }
-  return smallest;
+  return chosen;
+}
+
+}  // namespace
+
+double natural_impulse(const ContactModel& model) {
+  return momentum(model, INFINITY, [](double a, double b) { return std::min(a, b); });
+}
+
+double largest_momentum(const ContactModel& model) {
+  return momentum(model, 0.0, [](double a, double b) { return std::max(a, b); });
+}
+
+double contact_impulse(const ContactModel& model) {
+  double largest = 0.0;
+  for (Eigen::Index j = 0; j < model.contact_count(); ++j)
+    if (model.u_minus(j) < 0.0)
+      largest = std::max(largest, -model.u_minus(j) / model.H.coeff(j, j));
+  return largest;
 }
 
 void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_steps,
@@ -43,11 +65,15 @@ void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_s
     throw InvalidInput(invalid_value_message(field, delta_p,
                                              "0 < delta_p < the striker's momentum m V = " +
                                                  to_text(impulse) + " N s (best <= 1e-3 m V)"));
-  if (impulse / delta_p > double(max_steps))
-    throw InvalidInput(
-        invalid_value_message(field, delta_p,
-                              ">= m V / max_steps = " + to_text(impulse / double(max_steps)) +
-                                  " N s: the impact takes at least m V / delta_p impulse steps"));
+  const double largest = largest_momentum(model);
+  if (!(largest / delta_p <= double(max_steps)))
+    throw InvalidInput(invalid_value_message(
+        field, delta_p,
+        ">= P / max_steps = " + to_text(largest / double(max_steps)) +
+            " N s, P = " + to_text(largest) +
+            " N s the largest momentum: the impact takes at least P / delta_p impulse steps, "
+            "and impact.max_steps = " +
+            std::to_string(max_steps) + " (raise it to allow more)"));
 }
 
 }  // namespace mimpact::chains

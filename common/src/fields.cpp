@@ -29,6 +29,35 @@ std::string describe(const Allowed& allowed, bool integer) {
   return text;
 }
 
+std::string closest_name(std::string_view name, const std::vector<std::string_view>& candidates) {
+  // Levenshtein distance, one row at a time
+  auto distance = [](std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t above = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+        diagonal = above;
+      }
+    }
+    return row[b.size()];
+  };
+  if (name.size() > 100) return "";
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, name.size() / 3) + 1;
+  for (std::string_view candidate : candidates) {
+    const std::size_t d = distance(name, candidate);
+    if (d < best_distance) {
+      best_distance = d;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
 bool admits(const Allowed& allowed, double value, bool integer) {
   if (!std::isfinite(value)) return false;
   if (allowed.lower_open ? !(value > allowed.lower) : !(value >= allowed.lower)) return false;

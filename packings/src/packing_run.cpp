@@ -26,14 +26,14 @@ void check_record(const PackingScene& scene, const PackingModel& model) {
 }
 
 PackingRun run_lzb(const PackingScene& scene, const PackingModel& model,
-                   const PackingRunOptions& options, bool record) {
+                   const PackingRunOptions& options, plugins::LzbImpactOptions impact,
+                   bool record) {
   PackingRun run;
-  plugins::LzbImpactOptions impact = scene.impact_options();
+  run.options = impact;
   if (!scene.adaptive()) {
-    run.delta_p = chains::impulse_step(model, options.delta_p, scene.delta_p,
-                                       impact.impulse_steps.max_steps, options.delta_p_field);
-    impact.impulse_steps.delta_p = *run.delta_p;
-    validate(impact.impulse_steps, "impact");
+    const double delta_p =
+        chains::impulse_step(model, impact, chains::impact_labels(options.impact));
+    if (impact.delta_p) run.delta_p = delta_p;
   }
   chains::ImpactRecorder recorder(model, scene.chain_record(), scene.record.frames);
   if (record) recorder.configure(impact);
@@ -59,8 +59,10 @@ nlohmann::ordered_json per_body(const PackingModel& model, const Eigen::VectorXd
 
 std::string method_name(const PackingScene& scene, const PackingRun& run) {
   if (scene.adaptive())
-    return "adaptive LZB, tolerance " + to_text(scene.impact_options().adaptive.tolerance);
+    return "adaptive LZB, tolerance " + to_text(run.options.adaptive_tolerance());
   if (run.delta_p) return "LZB impulse steps, delta_p = " + to_text(*run.delta_p) + " N s";
+  if (run.options.relative_delta_p)
+    return "LZB impulse steps, relative_delta_p = " + to_text(*run.options.relative_delta_p);
   return "compliant contacts integrated in time";
 }
 
@@ -93,10 +95,9 @@ PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& mode
   check_record(scene, model);
   const bool record = options.record && (!scene.record.contacts.empty() ||
                                          !scene.record.beads.empty() || scene.record.frames > 0);
-  if (scene.method == chains::Method::lzb) return run_lzb(scene, model, options, record);
-  if (options.delta_p)
-    throw InvalidInput(options.delta_p_field +
-                       " is the step of the LZB method; the scene has method \"compliant\"");
+  const plugins::LzbImpactOptions impact =
+      chains::resolve_impact(scene.impact, scene.method, options.impact, scene.source);
+  if (scene.method == chains::Method::lzb) return run_lzb(scene, model, options, impact, record);
   chains::CompliantRun compliant = chains::simulate_compliant(
       model, build_packing_system(model), scene.compliant,
       record ? scene.chain_record() : chains::RecordSpec{}, record ? scene.record.frames : 0);
@@ -133,9 +134,11 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"method", scene.method == chains::Method::lzb ? "lzb" : "compliant"},
       {"integrator", scene.method == chains::Method::compliant
                          ? json(nullptr)
-                         : json(enum_name(scene.impact_options().integrator))},
+                         : json(enum_name(run.options.chosen_integrator()))},
       {"delta_p", run.delta_p ? json(*run.delta_p) : json(nullptr)},
-      {"tolerance", scene.adaptive() ? json(scene.impact_options().adaptive.tolerance)
+      {"relative_delta_p",
+       run.options.relative_delta_p ? json(*run.options.relative_delta_p) : json(nullptr)},
+      {"tolerance", scene.adaptive() ? json(run.options.adaptive_tolerance())
                     : scene.method == chains::Method::compliant ? json(scene.compliant.tolerance)
                                                                 : json(nullptr)},
       {"beads", model.bead_count},

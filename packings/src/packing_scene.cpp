@@ -82,33 +82,33 @@ void check_strikers(const PackingScene& scene, const SceneChecks& checks) {
 
 }  // namespace
 
-PackingScene parse_packing_scene(std::string_view text, const std::string& source,
-                                 const std::filesystem::path& directory) {
+PackingScene read_packing_scene(json document, const std::string& source,
+                                const std::filesystem::path& directory,
+                                const kernel::JsonLocations* locations) {
   const SceneChecks checks(source);
-  json document = chains::parse_scene_document(text, source);
   chains::lend_material(document, {"/lattice", "/beads", "/walls", "/strikers"}, source);
   PackingScene scene;
-  kernel::read_fields(document, scene, {.name = source, .unknown = "key", .top = "the top level"});
+  kernel::read_fields(
+      document, scene,
+      {.name = source, .unknown = "key", .top = "the top level", .locations = locations});
   scene.directory = directory;
+  scene.source = source;
   check_packing(scene, checks);
   check_walls(scene, checks);
   check_strikers(scene, checks);
-  scene.delta_p = chains::take_delta_p(scene.impact, source);
+  scene.impact = chains::resolve_impact(scene.impact, scene.method, {}, source);
   return scene;
+}
+
+PackingScene parse_packing_scene(std::string_view text, const std::string& source,
+                                 const std::filesystem::path& directory) {
+  kernel::JsonDocument document = chains::parse_scene_document(text, source);
+  return read_packing_scene(std::move(document.value), source, directory, &document.locations);
 }
 
 PackingScene load_packing_scene(const std::filesystem::path& path) {
   return parse_packing_scene(chains::read_scene_file(path), path.string(),
                              path.has_parent_path() ? path.parent_path() : ".");
-}
-
-plugins::LzbImpactOptions PackingScene::impact_options() const {
-  return chains::lzb_impact_options(impact, delta_p);
-}
-
-bool PackingScene::adaptive() const {
-  return method == chains::Method::lzb &&
-         impact_options().integrator == plugins::LzbIntegrator::adaptive;
 }
 
 chains::RecordSpec PackingScene::chain_record() const {

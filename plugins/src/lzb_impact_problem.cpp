@@ -14,47 +14,17 @@ using kernel::Index;
 
 namespace {
 
-// Refuses the options of the integrator not chosen (they would be silently unused).
-void check_chosen_integrator(const LzbImpactOptions& options) {
-  const LzbImpactOptions defaults;
-  const bool adaptive = options.integrator == LzbIntegrator::adaptive;
-  auto refuse = [&](const char* field, double value) {
-    throw InvalidInput(std::string("impact problem \"lzb\": ") + field + " = " +
-                       std::to_string(value) + " is an option of the " +
-                       (adaptive ? "impulse-step" : "adaptive") + " integrator; allowed: " +
-                       (adaptive ? "\"tolerance\" with \"integrator\": \"adaptive\""
-                                 : "\"delta_p\" with \"integrator\": \"impulse-step\" or "
-                                   "\"asynchronous\", or \"integrator\": \"adaptive\""));
-  };
-  if (adaptive) {
-    if (options.impulse_steps.delta_p != defaults.impulse_steps.delta_p)
-      refuse("delta_p", options.impulse_steps.delta_p);
-    if (options.relative_delta_p != defaults.relative_delta_p)
-      refuse("relative_delta_p", options.relative_delta_p);
-  } else if (options.adaptive.tolerance != defaults.adaptive.tolerance) {
-    refuse("tolerance", options.adaptive.tolerance);
-  }
-}
-
 LzbImpactOptions checked(LzbImpactOptions options) {
-  validate(options, "impact problem \"lzb\"");
-  check_chosen_integrator(options);
+  options.check("impact problem \"lzb\"");
   return options;
 }
 
 }  // namespace
 
-numerics::LzbAdaptiveOptions LzbImpactOptions::adaptive_options() const {
-  numerics::LzbAdaptiveOptions options = adaptive;
-  options.max_steps = impulse_steps.max_steps;
-  options.sampled_contacts = impulse_steps.sampled_contacts;
-  return options;
-}
-
 LzbImpactProblem::LzbImpactProblem(LzbImpactOptions options)
     : options_(checked(std::move(options))),
-      impulse_steps_(options_.impulse_steps),
-      asynchronous_(options_.impulse_steps),
+      impulse_steps_(options_.impulse_step_options()),
+      asynchronous_(options_.impulse_step_options()),
       adaptive_(options_.adaptive_options()) {}
 
 void LzbImpactProblem::check_law(const kernel::NonSmoothLaw& law, const std::string& which) const {
@@ -141,7 +111,7 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   // the integrator's termination tolerance tol_u_j
   if (options_.integrator == LzbIntegrator::adaptive)
     report.velocity_resolution = Eigen::VectorXd::Constant(
-        u_minus.size(), options_.adaptive.tolerance * (-u_minus.minCoeff()));
+        u_minus.size(), options_.adaptive_tolerance() * (-u_minus.minCoeff()));
   else
     report.velocity_resolution = delassus.H().diagonal().unaryExpr(
         [&](double h_jj) { return impulse_steps_.options().velocity_tolerance(h_jj); });
@@ -172,12 +142,12 @@ numerics::LzbResult LzbImpactProblem::integrate(const numerics::Delassus& delass
   if (options_.integrator == LzbIntegrator::adaptive)
     return dense ? adaptive_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
                  : adaptive_.integrate(delassus.H(), u_minus, laws_, observer);
-  if (options_.relative_delta_p > 0.0) {
+  if (options_.relative_delta_p) {
     const double natural_impulse =
         (-u_minus).cwiseMax(0.0).cwiseQuotient(Eigen::VectorXd(delassus.H().diagonal())).maxCoeff();
     if (natural_impulse > 0.0) {
-      impulse_steps_.set_delta_p(options_.relative_delta_p * natural_impulse);
-      asynchronous_.set_delta_p(options_.relative_delta_p * natural_impulse);
+      impulse_steps_.set_delta_p(*options_.relative_delta_p * natural_impulse);
+      asynchronous_.set_delta_p(*options_.relative_delta_p * natural_impulse);
     }
   }
   if (options_.integrator == LzbIntegrator::asynchronous)

@@ -39,7 +39,10 @@ struct ChainResult {
 
 chains::ChainScene load_scene(const py::object& scene) {
   return load_scene_argument(
-      scene, [](const std::string& text) { return chains::parse_chain_scene(text, "scene"); },
+      scene,
+      [](nlohmann::json document) {
+        return chains::read_chain_scene(std::move(document), "scene");
+      },
       [](const std::string& path) { return chains::load_chain_scene(path); });
 }
 
@@ -47,9 +50,9 @@ chains::ChainScene load_scene(const py::object& scene) {
 py::object read_scene(const py::object& path_argument) {
   const std::string path =
       py::module_::import("os").attr("fspath")(path_argument).cast<std::string>();
-  const std::string text = chains::read_scene_file(path);
-  chains::parse_chain_scene(text, path);  // the scene file's messages
-  return from_json(nlohmann::ordered_json::parse(text, nullptr, true, /*ignore_comments=*/true));
+  kernel::JsonDocument document = chains::parse_scene_document(chains::read_scene_file(path), path);
+  chains::read_chain_scene(document.value, path, &document.locations);  // the file's messages
+  return from_json(nlohmann::ordered_json(document.value));
 }
 
 // Parses and builds the scene without running it: the errors run_chain would raise first.
@@ -62,9 +65,9 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
   {
     py::gil_scoped_release computing;
     const chains::ChainModel model = chains::build_chain_model(scene);
-    run = chains::run_chain_scene(scene, model, {.delta_p = delta_p, .delta_p_field = "delta_p"});
-    summary =
-        chains::chain_summary(model, run.impact, run.delta_p, run.recorded ? &run.series : nullptr);
+    run = chains::run_chain_scene(scene, model,
+                                  {.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"}});
+    summary = chains::run_summary(model, run);
   }
   const chains::ImpactOutcome& impact = run.impact;
   if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite()))
@@ -107,8 +110,8 @@ py::object converge(const py::object& scene_argument, std::vector<double> tolera
 
 // {"density": kg/m^3, "young": Pa, "poisson": nu}, checked as a scene's "material"
 chains::Material material(const py::dict& fields, const std::string& name) {
-  return kernel::options_from<chains::Material>(
-      kernel::Parameters::parse(to_json(fields, name).dump()), {.name = name});
+  return kernel::options_from<chains::Material>(kernel::Parameters(to_json(fields, name)),
+                                                {.name = name});
 }
 
 }  // namespace

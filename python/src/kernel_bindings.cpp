@@ -36,7 +36,7 @@ kernel::Parameters parameters(const py::object& options, const std::string& wher
   nlohmann::ordered_json json = to_json(options, where);
   if (!json.is_object())
     throw InvalidInput(where + " = " + json.dump() + " is not allowed; allowed: a dict of options");
-  return kernel::Parameters::parse(json.dump());
+  return kernel::Parameters(json);
 }
 
 // The result of a Python callable as a vector of `size` values, or an error naming the callable.

@@ -42,8 +42,9 @@ struct PackingResult {
 packings::PackingScene load_scene(const py::object& scene) {
   return load_scene_argument(
       scene,
-      [](const std::string& text) {
-        return packings::parse_packing_scene(text, "scene", std::filesystem::current_path());
+      [](nlohmann::json document) {
+        return packings::read_packing_scene(std::move(document), "scene",
+                                            std::filesystem::current_path());
       },
       [](const std::string& path) { return packings::load_packing_scene(path); });
 }
@@ -72,8 +73,8 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
   {
     py::gil_scoped_release computing;
     model = packings::build_packing_model(scene);
-    run =
-        packings::run_packing_scene(scene, model, {.delta_p = delta_p, .delta_p_field = "delta_p"});
+    run = packings::run_packing_scene(scene, model,
+                                      {.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"}});
     summary = packings::packing_summary(scene, model, run);
   }
   const chains::ImpactOutcome& impact = run.impact;

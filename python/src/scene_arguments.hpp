@@ -15,11 +15,11 @@
 namespace mimpact::python {
 
 // A scene file's path (str or os.PathLike), read by load(path), or a dict with the keys of a
-// scene file, read by parse(text) with the same messages.
-template <class Parse, class Load>
-auto load_scene_argument(const pybind11::object& scene, Parse&& parse, Load&& load) {
+// scene file, read by read(document) with the same messages.
+template <class Read, class Load>
+auto load_scene_argument(const pybind11::object& scene, Read&& read, Load&& load) {
   namespace py = pybind11;
-  if (py::isinstance<py::dict>(scene)) return parse(to_json(scene, "scene").dump());
+  if (py::isinstance<py::dict>(scene)) return read(nlohmann::json(to_json(scene, "scene")));
   if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__"))
     return load(py::module_::import("os").attr("fspath")(scene).cast<std::string>());
   throw InvalidInput("scene = " + py::repr(scene).cast<std::string>() +

@@ -98,7 +98,7 @@ def test_the_computation_lets_other_python_threads_run(c1):
     "change, named",
     [
         (lambda s: s["contact"].update(restitution=1.5), "contact.restitution"),
-        (lambda s: s["strikers"][0].update(velocity="fast"), "strikers[0].velocity = \"fast\" (a string) is invalid; allowed: a number, > 0"),
+        (lambda s: s["strikers"][0].update(velocity="fast"), "strikers[0].velocity = \"fast\" (a string) is invalid; allowed: a number, >= 1e-100"),
         (lambda s: s.update(colour="red"), "colour"),
         (lambda s: s["chain"]["segments"][0].update(count=0), "count"),
         (lambda s: s["strikers"][0].update(velocity=object()), "scene.strikers[0].velocity = <object"),

@@ -164,8 +164,9 @@ INSTANTIATE_TEST_SUITE_P(
                  "chain.segments[0].taper = 1 is invalid"},
         BadScene{"zero_beads", "\"count\": 5", "\"count\": 0",
                  "chain.segments[0].count = 0 is invalid"},
-        BadScene{"away", "\"velocity\": 1", "\"velocity\": -1",
-                 "strikers[0].velocity = -1 is invalid; allowed: > 0 (m/s, towards the chain)"},
+        BadScene{
+            "away", "\"velocity\": 1", "\"velocity\": -1",
+            "strikers[0].velocity = -1 is invalid; allowed: >= 1e-100 (m/s, towards the chain"},
         BadScene{"threshold", "\"delta_p\": 1e-5",
                  "\"delta_p\": 1e-5, \"fixed_thresholds\": {\"velocity\": 0, \"energy\": 1e-8}",
                  "impact.fixed_thresholds.velocity = 0 is invalid; allowed: > 0 (m/s)"}),
@@ -271,7 +272,7 @@ TEST(ChainCommand, DeltaPMustResolveTheImpactInMaxSteps) {
       << coarse.err;
   const CliRun fine = mimpact("chain " + scene("c1.json") + " --delta-p 1e-300");
   EXPECT_EQ(fine.exit_code, 1);
-  EXPECT_NE(fine.err.find("--delta-p = 1e-300 is invalid; allowed: >= m V / max_steps"),
+  EXPECT_NE(fine.err.find("--delta-p = 1e-300 is invalid; allowed: >= P / max_steps"),
             std::string::npos)
       << fine.err;
   const CliRun from = mimpact("converge " + scene("c1.json") + " --from -1");
@@ -308,7 +309,7 @@ TEST(ChainCommand, LzbOptionsOnACompliantSceneAreErrors) {
   const fs::path file = compliant_c1("compliant", "");
   const CliRun delta_p = mimpact("chain " + file.string() + " --delta-p 1e-5");
   EXPECT_EQ(delta_p.exit_code, 1);
-  EXPECT_NE(delta_p.err.find("--delta-p is the step of the LZB method"), std::string::npos)
+  EXPECT_NE(delta_p.err.find("--delta-p = 1e-05 is the step of the LZB method"), std::string::npos)
       << delta_p.err;
   const CliRun converge = mimpact("converge " + file.string());
   EXPECT_EQ(converge.exit_code, 1);

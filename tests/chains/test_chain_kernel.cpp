@@ -57,7 +57,7 @@ TEST(ChainThroughKernel, NoOdeAndNoLcpWithoutForces) {
   for (const char* scene : {"c1.json", "c3.json"}) {
     const chains::ChainModel model = scene_model(scene);
     plugins::LzbImpactOptions options;
-    options.impulse_steps.delta_p = 1e-5;
+    options.delta_p = 1e-5;
     auto integrator = std::make_unique<plugins::EventDrivenIntegrator>();
     auto lcp = std::make_unique<plugins::AccelerationLcpProblem>();
     const plugins::EventDrivenIntegrator& ed = *integrator;

@@ -49,7 +49,7 @@ TEST(ChainScene, ValidSceneBuildsTheChainItDescribes) {
   EXPECT_NEAR(H(2, 2), 1.0 / model.mass(2) + 1.0 / model.mass(3), 1e-9);
   EXPECT_NEAR(H(2, 3), -1.0 / model.mass(3), 1e-9);
   EXPECT_EQ(H(0, 2), 0.0);
-  EXPECT_EQ(*scene.delta_p, 1e-6);
+  EXPECT_EQ(*scene.impact.delta_p, 1e-6);
 }
 
 // The error of a bad scene names the field and what is allowed, in one line.
@@ -59,7 +59,7 @@ std::string error_of(const std::string& text) {
   } catch (const InvalidInput& error) {
     const std::string what = error.what();
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    EXPECT_EQ(what.rfind("bad.json: ", 0), 0u) << what;
+    EXPECT_EQ(what.rfind("bad.json:", 0), 0u) << what;
     return what;
   }
   ADD_FAILURE() << "no error for " << text;
@@ -90,7 +90,8 @@ TEST(ChainScene, EveryBadFieldIsNamed) {
                   "chain.segments[0].count = 0 is invalid"));
   EXPECT_TRUE(has(error_of(with("\"count\": 3", "\"count\": 2.5")), "an integer >= 1"));
   EXPECT_TRUE(has(error_of(with("\"velocity\": 0.5", "\"velocity\": -0.5")),
-                  "strikers[0].velocity = -0.5 is invalid; allowed: > 0 (m/s, towards the chain)"));
+                  "strikers[0].velocity = -0.5 is invalid; allowed: >= 1e-100 (m/s, towards the "
+                  "chain"));
   EXPECT_TRUE(has(error_of(with("\"side\": \"left\"", "\"side\": \"up\"")),
                   "strikers[0].side = \"up\" is invalid; allowed: \"left\", \"right\""));
   EXPECT_TRUE(has(

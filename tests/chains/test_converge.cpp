@@ -26,7 +26,8 @@ struct PaperRow {
 analysis::ConvergenceRow study_row(const chains::ChainScene& scene, double delta_p) {
   analysis::ConvergenceOptions options;
   options.first_delta_p = delta_p;
-  options.integrator = scene.lzb_options(delta_p);
+  options.integrator = scene.impact.impulse_step_options();
+  options.integrator.delta_p = delta_p;
   const analysis::ConvergenceRow row = analysis::compare_step_sizes(
       chains::impact_problem(chains::build_chain_model(scene)), options);
   std::printf("delta_p %g: %lld steps, max eta_h %.4g, eta+_h %.4g, %s\n", delta_p,
@@ -107,7 +108,8 @@ TEST(Study, C1HalvesUntilConvergedAndExtrapolatesToTheHertzChain) {
   chains::ChainScene scene = scene_file("c1.json");
   analysis::ConvergenceOptions options;
   options.first_delta_p = 1e-4;
-  options.integrator = scene.lzb_options(1e-4);
+  options.integrator = scene.impact.impulse_step_options();
+  options.integrator.delta_p = 1e-4;
   const chains::ChainModel model = chains::build_chain_model(scene);
   const analysis::ConvergenceStudy study =
       analysis::study_convergence(chains::impact_problem(model), options);

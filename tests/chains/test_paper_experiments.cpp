@@ -28,11 +28,11 @@ Pulses run_paper_scene(chains::ChainScene scene) {
   const chains::ChainModel model = chains::build_chain_model(scene);
   chains::ImpactRecorder recorder(model, scene.record);
   plugins::LzbImpactOptions options;
-  options.impulse_steps.delta_p = *scene.delta_p;
+  options.delta_p = scene.impact.delta_p;
   recorder.configure(options);
   const chains::ImpactOutcome impact = chains::simulate_chain_impact(model, options, &recorder);
   const chains::TimeSeries series = recorder.series(impact);
-  return {chains::chain_summary(model, impact, options.impulse_steps.delta_p, &series)};
+  return {chains::chain_summary(model, impact, options.delta_p, &series)};
 }
 
 chains::ChainScene paper_scene(const std::string& name) {
@@ -98,7 +98,7 @@ TEST(PaperW, SpeedGoesAsTheForceToTheOneSixth) {
     scene.strikers[0].velocity = striker_speed;
     const double striker_mass =
         chains::bead_mass(scene.strikers[0].radius, scene.strikers[0].material);
-    scene.delta_p = 1e-3 * striker_mass * striker_speed;
+    scene.impact.delta_p = 1e-3 * striker_mass * striker_speed;
     const Pulses run = run_paper_scene(scene);
     const double distance =
         run.at(46)["position"].get<double>() - run.at(6)["position"].get<double>();

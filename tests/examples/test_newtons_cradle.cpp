@@ -127,7 +127,7 @@ TEST(NewtonsCradle, AdaptiveImpactsKeepTheEnergyTo1e9) {
   };
   plugins::LzbImpactOptions adaptive, impulse_steps;
   adaptive.integrator = plugins::LzbIntegrator::adaptive;
-  adaptive.adaptive.tolerance = 1e-9;
+  adaptive.tolerance = 1e-9;
   impulse_steps.relative_delta_p = 1e-4;
   ImpactSteps adaptive_steps, impulse_step_steps;
   const auto [adaptive_error, adaptive_speeds] = swing(adaptive, adaptive_steps);

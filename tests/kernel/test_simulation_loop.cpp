@@ -273,7 +273,9 @@ TEST(Registry, CreatesByNameAndNamesWhatIsRegistered) {
     registry.create("periodic", {{"perod", 0.5}});
     FAIL();
   } catch (const InvalidInput& error) {
-    EXPECT_NE(std::string(error.what()).find("unknown parameter \"perod\"; allowed: period"),
+    // the misspelt key is named, with the field it most likely meant
+    EXPECT_NE(std::string(error.what())
+                  .find("unknown parameter \"perod\" (did you mean \"period\"?); allowed: period"),
               std::string::npos)
         << error.what();
   }

@@ -29,7 +29,7 @@ chains::ImpactOutcome chain_of(int beads, const std::string& impact) {
           impact + "}",
       "chain");
   const chains::ChainModel model = chains::build_chain_model(scene);
-  plugins::LzbImpactOptions options = scene.impact_options();
+  plugins::LzbImpactOptions options = scene.impact;
   return chains::simulate_chain_impact(model, options);
 }
 
@@ -132,7 +132,7 @@ TEST(PackingReduction, StaggeredStrikersMakeTheChainsImpacts) {
                                     impact + "}",
                                 "chain");
   const chains::ChainModel model = chains::build_chain_model(scene);
-  const chains::ImpactOutcome chain = chains::simulate_chain_impact(model, scene.impact_options());
+  const chains::ImpactOutcome chain = chains::simulate_chain_impact(model, scene.impact);
   // the left striker's impact sends the last bead at the right striker: they meet before the
   // striker would reach a bead at rest, and the beads meet again twice (4 impacts)
   ASSERT_GE(chain.impact_times.size(), 2u);

@@ -63,7 +63,7 @@ TEST(LzbImpactProblem, NonDiagonalMassGivesTheSameImpactAsTheDiagonalOne) {
 
   const std::vector<Index> closed{0, 1};
   LzbImpactOptions options;
-  options.impulse_steps.delta_p = 1e-6;
+  options.delta_p = 1e-6;
   LzbImpactProblem a(options), b(options);
   const kernel::ImpactReport by_bodies = a.solve(*diagonal, closed, 0.0);
   const kernel::ImpactReport by_q = b.solve(*transformed, closed, 0.0);

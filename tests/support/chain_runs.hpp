@@ -31,7 +31,7 @@ inline chains::ImpactOutcome run_chain(const chains::ChainModel& model, double d
 inline chains::ImpactOutcome run_adaptive(const chains::ChainModel& model, double tolerance) {
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
-  options.adaptive.tolerance = tolerance;
+  options.tolerance = tolerance;
   return chains::simulate_chain_impact(model, options);
 }
 

@@ -1,6 +1,7 @@
 #include "mimpact/models/simulation_setup.hpp"
 
 #include "mimpact/common/error.hpp"
+#include "mimpact/kernel/json_document.hpp"
 #include "mimpact/kernel/parameters.hpp"
 #include "mimpact/kernel/registry.hpp"
 #include "mimpact/plugins/register_plugins.hpp"
@@ -13,15 +14,11 @@ plugins::LzbImpactOptions impact_options_from_command_line(
   if (argc > 2)
     throw InvalidInput(std::string(argv[0]) + ": " + std::to_string(argc - 1) +
                        " arguments; allowed: none, or one JSON object of the impact options");
-  const kernel::Parameters parameters =
-      kernel::Parameters::parse(argv[1], nullptr, /*allow_exceptions=*/false);
-  if (parameters.is_discarded())
-    throw InvalidInput(std::string(argv[0]) + ": the argument '" + argv[1] +
-                       "' is not JSON; allowed: an object such as "
-                       "'{\"integrator\": \"adaptive\", \"tolerance\": 1e-10}'");
+  const std::string source = std::string(argv[0]) + " impact options";
+  const kernel::JsonDocument parameters = kernel::parse_json_document(argv[1], source);
   plugins::LzbImpactOptions options = kernel::options_from<plugins::LzbImpactOptions>(
-      parameters, {.name = std::string(argv[0]) + " impact options"});
-  plugins::LzbImpactProblem checked(options);  // refuses options of the integrator not chosen
+      parameters.value, {.name = source, .locations = &parameters.locations});
+  options.check(source);  // refuses options of the integrator not chosen
   return options;
 }
 

@@ -14,9 +14,8 @@
 namespace mimpact::chains {
 
 struct ChainRunOptions {
-  std::optional<double> delta_p;                 // N s: overrides the scene's (impulse steps)
-  std::string delta_p_field = "impact.delta_p";  // what the messages about delta_p call it
-  bool record = true;                            // sample the scene's "record" series
+  ImpactOverrides impact;  // over the scene's "impact" (resolve_impact)
+  bool record = true;      // sample the scene's "record" series
   // Sees the LZB samples too, at least every progress_every impulse steps (a progress report).
   numerics::ImpactObserver* progress = nullptr;
   std::int64_t progress_every = 2'000'000;
@@ -24,15 +23,22 @@ struct ChainRunOptions {
 
 struct ChainRun {
   ImpactOutcome impact;
-  std::optional<double> delta_p;  // N s, of the impulse steps; none for the other methods
-  bool recorded = false;          // series holds the scene's "record"
+  Method method = Method::lzb;
+  plugins::LzbImpactOptions options;  // the impact's options, as resolved
+  std::optional<double> delta_p;      // N s, of the impulse steps; none for the other methods
+  bool recorded = false;              // series holds the scene's "record"
   TimeSeries series;
 };
 
 // The LZB impact (impulse steps at delta_p, or the adaptive integrator) or the compliant
-// method, as the scene says. Throws InvalidInput when the impulse steps have no delta_p or
-// one out of range, and for a delta_p given to another method.
+// method, as the scene says, with the overrides of options.impact. Throws InvalidInput when the
+// impulse steps have no delta_p or one out of range, and for a delta_p given to another method
+// or alongside relative_delta_p.
 ChainRun run_chain_scene(const ChainScene& scene, const ChainModel& model,
                          const ChainRunOptions& options = {});
+
+// summary.json of the run (chain_summary) with how it was computed: "method", and the impulse
+// steps' delta_p or relative_delta_p, or the adaptive integrator's tolerance.
+nlohmann::ordered_json run_summary(const ChainModel& model, const ChainRun& run);
 
 }  // namespace mimpact::chains

@@ -14,10 +14,11 @@
 #include "mimpact/chains/hertz.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/common/fields.hpp"
+#include "mimpact/kernel/json_document.hpp"
 #include "mimpact/kernel/parameters.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
-#include "mimpact/plugins/lzb_impact_problem.hpp"
+#include "mimpact/plugins/lzb_impact_options.hpp"
 
 // The chain scene file, docs/scenes.md. Every struct lists its fields once (visit_fields):
 // the keys of the file, their checks and the messages about them.
@@ -46,6 +47,11 @@ constexpr auto enum_names(Side) {
   return std::array{Name{Side::left, "left"}, Name{Side::right, "right"}};
 }
 
+// A striker's speed (m/s): below 1e-100 the impact's energies m v^2 / 2 fall under double
+// precision's smallest numbers and the striker would count as at rest.
+inline constexpr Allowed kStrikerSpeed =
+    at_least(1e-100, "m/s, towards the chain; below, m v^2 underflows double precision");
+
 // A bead thrown at one end of the chain.
 struct StrikerSpec {
   Side side = Side::left;
@@ -58,7 +64,7 @@ struct StrikerSpec {
   static void visit_fields(Self& self, Visit&& field) {
     field("side", self.side);
     field("radius", self.radius, positive("m").needed());
-    field("velocity", self.velocity, positive("m/s, towards the chain").needed());
+    field("velocity", self.velocity, kStrikerSpeed.needed());
     field("gap", self.gap, at_least(0.0, "m"));
     field("material", self.material, any().needed());
   }
@@ -181,15 +187,15 @@ struct ChainScene {
   std::vector<StrikerSpec> strikers;  // one or two, on different sides
   std::optional<WallSpec> wall;
   ContactSpec contact;
-  // "impact": the parameters of the "lzb" impact problem (plugins::LzbImpactOptions), but
-  // delta_p, which is apart because the command line may choose it
-  kernel::Parameters impact = kernel::Parameters::object();
-  std::optional<double> delta_p;  // N s, from "impact": {"delta_p"}
+  // "impact": the options of the "lzb" impact problem; resolve_impact() merges what the command
+  // line or Python chose over them
+  plugins::LzbImpactOptions impact;
   RecordSpec record;
   Method method = Method::lzb;
   CompliantSpec compliant;
   // N: a constant force on the first bead pushes the chain against its wall (compliant only)
   double precompression = 0.0;
+  std::string source = "scene";  // the file it was read from, for messages
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -209,16 +215,15 @@ struct ChainScene {
   int body_count() const { return bead_count() + int(strikers.size()); }
   int contact_count() const { return body_count() - 1 + (wall ? 1 : 0); }
   const StrikerSpec* striker(Side side) const;
-  // The "lzb" impact problem's options as the scene gives them (delta_p its own, or the
-  // default), and the LZB integrator's among them at delta_p = impulse_step (N s).
-  plugins::LzbImpactOptions impact_options() const;
   // The LZB method with "integrator": "adaptive" (a tolerance, no delta_p).
-  bool adaptive() const;
-  numerics::LzbOptions lzb_options(double impulse_step) const;
+  bool adaptive() const {
+    return method == Method::lzb && impact.integrator == plugins::LzbIntegrator::adaptive;
+  }
 };
 
-// A scene file's JSON (comments allowed); InvalidInput "SOURCE: malformed JSON: ..." otherwise.
-nlohmann::json parse_scene_document(std::string_view text, const std::string& source);
+// A scene file's JSON: parse_json_document's limits, and its messages naming the file, line,
+// column and field.
+kernel::JsonDocument parse_scene_document(std::string_view text, const std::string& source);
 
 // Copies the top-level "material" of a scene document into every body that names none, so
 // that one field list reads every body alike. `bodies` are JSON pointers to a body or an array
@@ -227,23 +232,38 @@ nlohmann::json parse_scene_document(std::string_view text, const std::string& so
 void lend_material(nlohmann::json& document, std::initializer_list<const char*> bodies,
                    const std::string& source);
 
-// Reads "impact" as the "lzb" impact problem reads its parameters (InvalidInput naming `source`
-// on a bad one) and takes delta_p out of it: the command line may choose it instead.
-std::optional<double> take_delta_p(kernel::Parameters& impact, const std::string& source);
-// The impulse steps' delta_p (N s): `chosen` (the command line's) or else the scene's, checked
-// against the model (check_delta_p, naming `field`); InvalidInput when there is none.
-double impulse_step(const ContactModel& model, std::optional<double> chosen,
-                    std::optional<double> scene_value, std::int64_t max_steps,
-                    const std::string& field);
-// The "lzb" impact problem's options of "impact", with delta_p when given.
-plugins::LzbImpactOptions lzb_impact_options(const kernel::Parameters& impact,
-                                             std::optional<double> delta_p);
+// What a caller may choose over a scene's "impact": the command line's --delta-p, Python's
+// delta_p=.
+struct ImpactOverrides {
+  std::optional<double> delta_p;         // N s
+  std::string delta_p_name = "delta_p";  // what messages call it: "--delta-p"
+};
 
-// Parses and validates a scene (JSON, comments allowed). Throws InvalidInput naming the
-// source, the field, its value and what is allowed; unknown keys are errors.
+// The scene's impact options with the overrides, checked by the one rule of the impact options
+// (plugins::LzbImpactOptions::check) for the LZB method; an override given to the compliant
+// method is refused. Throws InvalidInput naming `source` and each field where it was given.
+plugins::LzbImpactOptions resolve_impact(const plugins::LzbImpactOptions& impact, Method method,
+                                         const ImpactOverrides& overrides,
+                                         const std::string& source);
+// What messages call the impact options' fields, given the overrides.
+fields::Labels impact_labels(const ImpactOverrides& overrides);
+
+// The impulse steps' delta_p (N s) for the checks before a run: the options' delta_p, or
+// relative_delta_p times the natural impulse of the model's contacts; checked against the model
+// (check_delta_p, naming the field as `labels` does). InvalidInput when there is neither.
+double impulse_step(const ContactModel& model, const plugins::LzbImpactOptions& impact,
+                    const fields::Labels& labels);
+
+// Reads a scene document (its keys as docs/scenes.md lists them). Throws InvalidInput naming
+// the source, the field (and its line and column when `locations` are given), its value and
+// what is allowed; unknown keys are errors.
+ChainScene read_chain_scene(nlohmann::json document, const std::string& source,
+                            const kernel::JsonLocations* locations = nullptr);
+// Parses and reads a scene (JSON, comments allowed).
 ChainScene parse_chain_scene(std::string_view text, const std::string& source);
 ChainScene load_chain_scene(const std::filesystem::path& path);
-// A scene file's text; InvalidInput when it is a directory or cannot be read.
+// A scene file's text; InvalidInput when it is not a regular file, is larger than 64 MB or
+// cannot be read.
 std::string read_scene_file(const std::filesystem::path& path);
 
 }  // namespace mimpact::chains

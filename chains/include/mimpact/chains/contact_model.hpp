@@ -43,11 +43,18 @@ double impact_overlap(const ContactModel& model);
 // The impulse that sets the impact's scale (N s): the smallest momentum m |v| of a moving
 // body, i.e. of a striker. delta_p is best chosen as a share of it.
 double natural_impulse(const ContactModel& model);
+// The largest momentum m |v| of a moving body (N s): the impact takes at least this over
+// delta_p steps to take it up.
+double largest_momentum(const ContactModel& model);
+// The natural impulse of the approaching contacts, max_j |u_j-| / H_jj (N s): what
+// relative_delta_p is a share of (plugins::LzbImpactOptions).
+double contact_impulse(const ContactModel& model);
 
 // Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
 // resolve the impact: finite, below the natural impulse m V (a coarser step resolves no
 // approach, so the strikers would pass through their targets), and not so fine that the
-// impact needs more than max_steps steps (it takes at least m V / delta_p).
+// impact needs more than max_steps steps (it takes at least the largest momentum over
+// delta_p).
 void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_steps,
                    const std::string& field);
 

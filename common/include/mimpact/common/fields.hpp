@@ -122,8 +122,25 @@ inline std::string label(std::string_view path, const Allowed& allowed) {
                                 : std::string(path) + " " + std::string(allowed.symbol);
 }
 
+// What messages call the fields of an options struct: "PREFIX" + name ("impact.delta_p" in a
+// scene), or the name of the place that chose the field ("--delta-p" on the command line).
+struct Labels {
+  std::string prefix;
+  std::vector<std::pair<std::string, std::string>> chosen;  // (field, its name)
+
+  std::string operator()(std::string_view field) const {
+    for (const auto& [name, label] : chosen)
+      if (name == field) return label;
+    return prefix + std::string(field);
+  }
+};
+
 // "> 0 (s)", "an integer in [0, 10]", or the field's own text
 std::string describe(const Allowed& allowed, bool integer);
+
+// The name among `candidates` that `name` most likely misspells ("striker" for "strikers"):
+// within an edit distance of a third of its length (at least 2), or "" when none is.
+std::string closest_name(std::string_view name, const std::vector<std::string_view>& candidates);
 
 // Whether a value fits: finite, within the range, whole for an integer field.
 bool admits(const Allowed& allowed, double value, bool integer);
@@ -173,7 +190,8 @@ namespace fields {
 // of range.
 class Validator {
  public:
-  Validator(std::string_view owner, std::string path) : owner_(owner), path_(std::move(path)) {}
+  Validator(std::string owner, std::string path)
+      : owner_(std::move(owner)), path_(std::move(path)) {}
 
   template <class T>
   void operator()(std::string_view name, const T& value, const Allowed& allowed = {}) const {
@@ -181,7 +199,7 @@ class Validator {
   }
 
   template <class T>
-  void check(const std::string& path, const T& value, const Allowed& allowed) const {
+  void check(const std::string& path, const T& value, const Allowed& allowed = {}) const {
     if constexpr (Number<T>) {
       check_number<T>(path, double(value), allowed);
     } else if constexpr (IsOptional<T>::value) {
@@ -210,11 +228,11 @@ class Validator {
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw InvalidInput(owner_.empty() ? what : std::string(owner_) + ": " + what);
+    throw InvalidInput(owner_.empty() ? what : owner_ + ": " + what);
   }
 
  private:
-  std::string_view owner_;
+  std::string owner_;
   std::string path_;
 };
 
@@ -224,7 +242,7 @@ class Validator {
 // allowed: the one validation of every options and scene struct.
 template <fields::Described T>
 void validate(const T& value, std::string_view owner = {}) {
-  T::visit_fields(value, fields::Validator(owner, ""));
+  T::visit_fields(value, fields::Validator(std::string(owner), ""));
 }
 
 }  // namespace mimpact

@@ -15,6 +15,11 @@
 namespace mimpact::numerics {
 
 struct LzbAdaptiveOptions {
+  // below 1e-13 double precision cannot meet the tolerance
+  static constexpr Allowed kToleranceRange =
+      within(1e-13, 0.1)
+          .described("1e-13 <= tolerance <= 0.1 (below 1e-13 double precision cannot meet it)");
+
   // The relative accuracy asked of the result. With V the fastest pre-impact approach,
   // |u-|max, the velocities are to be right to tolerance * V, and each contact's impulse and
   // indentation to the same fraction of its natural ones (V / H_jj, and the indentation that
@@ -33,10 +38,7 @@ struct LzbAdaptiveOptions {
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
-    field(
-        "tolerance", self.tolerance,
-        within(1e-13, 0.1)
-            .described("1e-13 <= tolerance <= 0.1 (below 1e-13 double precision cannot meet it)"));
+    field("tolerance", self.tolerance, kToleranceRange);
     field("max_steps", self.max_steps, at_least(1));
     field("sample_interval", self.sample_interval, at_least(0.0, "s, 0: start and end only"));
     field("sampled_contacts", self.sampled_contacts, at_least(0, "contact indices"));

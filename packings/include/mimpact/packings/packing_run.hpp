@@ -14,15 +14,15 @@
 namespace mimpact::packings {
 
 struct PackingRunOptions {
-  std::optional<double> delta_p;                 // N s: overrides the scene's (impulse steps)
-  std::string delta_p_field = "impact.delta_p";  // what the messages about delta_p call it
-  bool record = true;                            // sample the scene's "record"
+  chains::ImpactOverrides impact;  // over the scene's "impact" (chains::resolve_impact)
+  bool record = true;              // sample the scene's "record"
 };
 
 struct PackingRun {
   chains::ImpactOutcome impact;
-  std::optional<double> delta_p;  // N s, of the impulse steps; none for the other methods
-  bool recorded = false;          // series (and frames, if asked for) hold the scene's record
+  plugins::LzbImpactOptions options;  // the impact's options, as resolved
+  std::optional<double> delta_p;      // N s, of the impulse steps; none for the other methods
+  bool recorded = false;              // series (and frames, if asked for) hold the scene's record
   chains::TimeSeries series;
   chains::Frames frames;
 };

@@ -12,7 +12,7 @@
 #include "mimpact/chains/hertz.hpp"
 #include "mimpact/common/fields.hpp"
 #include "mimpact/kernel/parameters.hpp"
-#include "mimpact/plugins/lzb_impact_problem.hpp"
+#include "mimpact/plugins/lzb_impact_options.hpp"
 
 // The planar packing scene file, docs/scenes.md ("Planar packings"). Like the chain scenes,
 // every struct lists its fields once (visit_fields): the keys, their checks and the messages.
@@ -133,14 +133,14 @@ struct PackingScene {
   std::vector<WallSpec> walls;
   std::vector<StrikerSpec> strikers;
   chains::ContactSpec contact;
-  // "impact": the parameters of the "lzb" impact problem, delta_p apart (the command line may
-  // choose it)
-  kernel::Parameters impact = kernel::Parameters::object();
-  std::optional<double> delta_p;  // N s
+  // "impact": the options of the "lzb" impact problem (chains::resolve_impact merges what the
+  // command line or Python chose over them)
+  plugins::LzbImpactOptions impact;
   RecordSpec record;
   chains::Method method = chains::Method::lzb;
   chains::CompliantSpec compliant;
   std::filesystem::path directory;  // of the scene file: bead lists are found from it
+  std::string source = "scene";     // the file it was read from, for messages
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -156,15 +156,20 @@ struct PackingScene {
     field("compliant", self.compliant);
   }
 
-  plugins::LzbImpactOptions impact_options() const;
-  bool adaptive() const;
+  bool adaptive() const {
+    return method == chains::Method::lzb && impact.integrator == plugins::LzbIntegrator::adaptive;
+  }
   // the record of the chains' impact runs: the beads as bodies
   chains::RecordSpec chain_record() const;
 };
 
-// Parses and validates a scene (JSON, comments allowed); `directory` is where bead lists are
-// looked for. Throws InvalidInput naming the source, the field, its value and what is allowed;
-// unknown keys are errors.
+// Reads a scene document; `directory` is where bead lists are looked for. Throws InvalidInput
+// naming the source, the field (with its line and column when `locations` are given), its
+// value and what is allowed; unknown keys are errors.
+PackingScene read_packing_scene(nlohmann::json document, const std::string& source,
+                                const std::filesystem::path& directory,
+                                const kernel::JsonLocations* locations = nullptr);
+// Parses and reads a scene (JSON, comments allowed).
 PackingScene parse_packing_scene(std::string_view text, const std::string& source,
                                  const std::filesystem::path& directory = ".");
 PackingScene load_packing_scene(const std::filesystem::path& path);

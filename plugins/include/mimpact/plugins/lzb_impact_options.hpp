@@ -1,0 +1,93 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "mimpact/common/fields.hpp"
+#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+#include "mimpact/numerics/lzb_impulse_integrator.hpp"
+
+namespace mimpact::plugins {
+
+// How the LZB impact is integrated: by the impulse steps of Nguyen & Brogliato (2011), first
+// order in delta_p; by the same steps taken by each contact at its own pace
+// (numerics::LzbAsynchronousIntegrator, for impacts whose loaded contacts far outnumber the
+// front's: packings); or by the adaptive integration of their continuous limit to a tolerance
+// (numerics::LzbAdaptiveIntegrator).
+enum class LzbIntegrator { impulse_step, asynchronous, adaptive };
+
+constexpr auto enum_names(LzbIntegrator) {
+  using Name = std::pair<LzbIntegrator, std::string_view>;
+  return std::array{Name{LzbIntegrator::impulse_step, "impulse-step"},
+                    Name{LzbIntegrator::asynchronous, "asynchronous"},
+                    Name{LzbIntegrator::adaptive, "adaptive"}};
+}
+
+// The options of the "lzb" impact problem: one value, whether it comes from a scene's "impact",
+// the parameters of a registry, the command line or Python's keyword arguments, checked by one
+// rule (check()). The choices whose presence matters are optional: a step given to the adaptive
+// integrator, or two steps at once, are refused rather than silently ignored.
+struct LzbImpactOptions {
+  // delta_p when neither it nor relative_delta_p is given (N s)
+  static constexpr double kDefaultDeltaP = 1e-5;
+
+  // The impulse steps when none is chosen (chosen_integrator()).
+  std::optional<LzbIntegrator> integrator;
+  // The impulse steps' principal step (N s), synchronous or asynchronous.
+  std::optional<double> delta_p;
+  // Or, for each impact, delta_p = relative_delta_p * max_j |u_j-| / H_jj, this share of its
+  // natural impulse (the impulse that stops its fastest contact alone): impacts of very
+  // different strengths (a ball's shrinking bounces) are then resolved alike.
+  std::optional<double> relative_delta_p;
+  // The adaptive integrator's relative accuracy (LzbAdaptiveOptions::tolerance).
+  std::optional<double> tolerance;
+  // The impulse steps' other options; max_steps and sampled_contacts (interactions of the
+  // system) serve the adaptive integrator too. Their delta_p is the one above.
+  numerics::LzbOptions impulse_steps;
+  // The adaptive integrator's sample_interval (its other options come from the fields above).
+  numerics::LzbAdaptiveOptions adaptive;
+  // Impacts among at most this many contacts use a dense H; larger ones a sparse H, whose
+  // steps cost in proportion to the contacts taking part.
+  Eigen::Index dense_up_to = 16;
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("integrator", self.integrator);
+    field("delta_p", self.delta_p, positive("N s"));
+    field("relative_delta_p", self.relative_delta_p,
+          within(0.0, 1.0, "a share of each impact's natural impulse", true, true));
+    field("tolerance", self.tolerance, numerics::LzbAdaptiveOptions::kToleranceRange);
+    numerics::LzbOptions::visit_fields(self.impulse_steps,
+                                       [&](std::string_view name, auto& value, auto&&... allowed) {
+                                         if (name != "delta_p") field(name, value, allowed...);
+                                       });
+    numerics::LzbAdaptiveOptions::visit_fields(
+        self.adaptive, [&](std::string_view name, auto& value, auto&&... allowed) {
+          if (name == "sample_interval") field(name, value, allowed...);
+        });
+    field("dense_up_to", self.dense_up_to, within(0, 2147483648.0));
+  }
+
+  LzbIntegrator chosen_integrator() const {
+    return integrator.value_or(LzbIntegrator::impulse_step);
+  }
+  // The impulse steps' options, delta_p included (relative_delta_p sets it impact by impact).
+  numerics::LzbOptions impulse_step_options() const;
+  // The adaptive integrator's options, with max_steps and sampled_contacts from impulse_steps.
+  numerics::LzbAdaptiveOptions adaptive_options() const;
+  double adaptive_tolerance() const {
+    return tolerance.value_or(numerics::LzbAdaptiveOptions{}.tolerance);
+  }
+
+  // The one rule: every field in its range, and no field of an integrator not chosen (delta_p
+  // or relative_delta_p with "adaptive", tolerance with the impulse steps), nor delta_p with
+  // relative_delta_p. Throws InvalidInput "OWNER: ..." naming each field as `labels` does
+  // ("impact.delta_p" in a scene, "--delta-p" when the command line gave it).
+  void check(std::string_view owner, const fields::Labels& labels = {}) const;
+};
+
+}  // namespace mimpact::plugins
