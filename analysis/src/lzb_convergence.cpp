@@ -119,13 +119,15 @@ ConvergenceStudy study_convergence(const ImpactProblemData& problem,
   double h = options.first_delta_p, unused = 0.0;
   Run coarse = run(problem, options.integrator, h, nullptr, unused);
   for (int k = 0; k < options.max_halvings; ++k, h /= 2) {
-    // the run at h/2 takes about twice the steps of the run at h, and both are held at once
-    const double bytes = 3.0 * double(coarse.principal.size()) * double(coarse.dof + 1) * 8.0;
-    if (bytes > kSampleBudgetBytes) {
+    // the run at h/2 takes about twice the steps of the run at h, and both are held at once, in
+    // vectors that grow by doubling
+    const double bytes = 6.0 * double(coarse.principal.size()) * double(coarse.dof + 1) * 8.0;
+    if (bytes > options.max_sample_bytes) {
       study.stopped = "the run at delta_p = " + to_text(h / 2) + " N s would hold about " +
-                      to_text(std::round(bytes / 1e8) / 10.0) +
-                      " GB of samples; loosen the bounds or use the adaptive integrator "
-                      "(\"integrator\": \"adaptive\")";
+                      to_text(std::round(bytes / 1e8) / 10.0) + " GB of samples, above the " +
+                      to_text(std::round(options.max_sample_bytes / 1e8) / 10.0) +
+                      " GB allowed; loosen the bounds, allow more memory or use the adaptive "
+                      "integrator (\"integrator\": \"adaptive\")";
       break;
     }
     double max_eta = 0.0;

@@ -64,10 +64,10 @@ std::string method_line(const chains::ChainScene& scene, std::optional<double> d
   return "compliant contacts integrated in time";
 }
 
-// summary.json on stdout, or with the time series into `out_dir`, complete or not at all.
+// summary.json on stdout, or with the time series into `out`, complete or not at all.
 void write_results(const nlohmann::ordered_json& summary, const chains::TimeSeries* series,
-                   const std::string& out_dir) {
-  if (out_dir.empty()) {
+                   const std::filesystem::path& out) {
+  if (out.empty()) {
     std::cout << summary.dump(2) << "\n";
     return;
   }
@@ -76,13 +76,14 @@ void write_results(const nlohmann::ordered_json& summary, const chains::TimeSeri
     if (!series->contacts.empty()) files["forces.csv"] = series->forces_csv();
     if (!series->bodies.empty()) files["velocities.csv"] = series->velocities_csv();
   }
-  write_output_directory(out_dir, files, {"summary.json", "forces.csv", "velocities.csv"});
+  write_output_directory(out, files);
 }
 
 }  // namespace
 
 int chain_command(const std::vector<std::string>& arguments) {
   std::string scene_file, out_dir;
+  chains::RunLimits limits;
   std::vector<double> tolerance;
   po::options_description visible(
       "mimpact chain SCENE.json: the multiple impact of a granular chain");
@@ -95,13 +96,18 @@ int chain_command(const std::vector<std::string>& arguments) {
       "post-impact velocities (and the peak forces) change by at most eps+ (eps) relative; with "
       "the impulse steps, halve delta_p from --delta-p (or the scene's, or 1e-3 of the striker's "
       "m V) until the velocities (and those along the impact) do; see `mimpact converge`")(
-      "quiet", "no progress or report on stderr");
+      "max-memory", po::value(&limits.memory_gb),
+      "GB the run may hold (the chain and its recorded series), 4 by default; a run that needs "
+      "more is refused before it starts")("quiet", "no progress or report on stderr");
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
+  limits.check();
+  const std::filesystem::path out =
+      values.count("out") ? check_output_directory(out_dir) : std::filesystem::path();
 
   chains::ChainScene scene = chains::load_chain_scene(scene_file);
-  const chains::ChainModel model = chains::build_chain_model(scene);
+  const chains::ChainModel model = chains::build_chain_model(scene, limits);
   chains::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
   if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
   scene.impact = chains::resolve_impact(scene.impact, scene.method, overrides, scene_file);
@@ -111,7 +117,8 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (!tolerance.empty() && !overrides.delta_p && chains::uses_tolerance_study(scene)) {
     tolerance_study = analysis::study_tolerance(
         chains::impact_problem(model),
-        chains::tolerance_study_options(scene, {.tolerance = tolerance, .max_rows = 8}));
+        chains::tolerance_study_options(scene,
+                                        {.tolerance = tolerance, .max_rows = 8, .limits = limits}));
     if (!tolerance_study->converged)
       throw Error(scene_file + ": no tolerance down to " +
                   to_text(tolerance_study->finest_tolerance) +
@@ -124,7 +131,8 @@ int chain_command(const std::vector<std::string>& arguments) {
                                                                     {.tolerance = tolerance,
                                                                      .first = overrides.delta_p,
                                                                      .max_rows = 12,
-                                                                     .first_name = "--delta-p"}));
+                                                                     .first_name = "--delta-p",
+                                                                     .limits = limits}));
     if (!study->converged && !study->stopped.empty())
       throw Error(scene_file + ": --tolerance not met: " + study->stopped + "; no output written");
     if (!study->converged)
@@ -134,9 +142,9 @@ int chain_command(const std::vector<std::string>& arguments) {
     scene.impact.relative_delta_p.reset();
   }
   const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
-  if (recording && out_dir.empty() && !quiet)
+  if (recording && out.empty() && !quiet)
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
-  const bool writes_series = recording && !out_dir.empty();
+  const bool writes_series = recording && !out.empty();
 
   if (lzb && !scene.adaptive()) {  // refused before it is warned of
     const double delta_p =
@@ -144,9 +152,11 @@ int chain_command(const std::vector<std::string>& arguments) {
     warn_if_coarse(delta_p, chains::natural_impulse(model), quiet);
   }
   ProgressReporter progress;
-  chains::ChainRun run = chains::run_chain_scene(
-      scene, model,
-      {.record = writes_series, .progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr});
+  chains::ChainRunOptions run_options;
+  run_options.record = writes_series;
+  run_options.limits = limits;
+  run_options.progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr;
+  chains::ChainRun run = chains::run_chain_scene(scene, model, run_options);
   const chains::ImpactOutcome& impact = run.impact;
   const chains::TimeSeries& series = run.series;
   nlohmann::ordered_json summary = chains::run_summary(model, run);
@@ -162,7 +172,7 @@ int chain_command(const std::vector<std::string>& arguments) {
         std::isfinite(impact.lzb.duration)))
     throw Error(scene_file +
                 ": the run produced a non-finite velocity, force or duration; no output written");
-  write_results(summary, writes_series ? &series : nullptr, out_dir);
+  write_results(summary, writes_series ? &series : nullptr, out);
   return 0;
 }
 

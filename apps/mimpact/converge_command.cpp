@@ -14,6 +14,7 @@ namespace po = boost::program_options;
 int converge_command(const std::vector<std::string>& arguments) {
   std::string scene_file;
   int halvings = 12;
+  chains::RunLimits limits;
   std::vector<double> tolerance;
   po::options_description visible(
       "mimpact converge SCENE.json: delta_p = h, h/2, h/4, ... until the LZB impact converges "
@@ -28,12 +29,15 @@ int converge_command(const std::vector<std::string>& arguments) {
       "eps+ [eps]: bounds on eta+ (post-impact velocities) and on max eta_h (along the impact) or "
       "the peak forces' change (tolerance study); default 0.01 0.01")(
       "halvings", po::value(&halvings)->default_value(halvings), "at most this many rows")(
+      "max-memory", po::value(&limits.memory_gb),
+      "GB the study may hold (the steps of two runs compared along the impact), 4 by default")(
       "json", "print one JSON object instead of the table");
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
+  limits.check();
   const chains::ChainScene scene = chains::load_chain_scene(scene_file);
-  const chains::ChainModel model = chains::build_chain_model(scene);
-  chains::StudyRequest request{.tolerance = tolerance, .max_rows = halvings};
+  const chains::ChainModel model = chains::build_chain_model(scene, limits);
+  chains::StudyRequest request{.tolerance = tolerance, .max_rows = halvings, .limits = limits};
   if (values.count("from")) request.first = values["from"].as<double>();
   if (chains::uses_tolerance_study(scene)) {
     const analysis::ToleranceStudy study = analysis::study_tolerance(

@@ -1,4 +1,5 @@
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -41,15 +42,23 @@ int lcp_command(const std::vector<std::string>& arguments) {
               << "\n";
     throw;
   }
-  const numerics::LemkeResult result = numerics::solve_lemke(problem.M, problem.q, options);
-  nlohmann::ordered_json out = {
-      {"file", file},
-      {"status", numerics::to_string(result.status)},
-      {"n", problem.q.size()},
-      {"pivots", result.pivots},
-      {"complementarity_error", result.complementarity_error},
-      {"z", std::vector<double>(result.z.data(), result.z.data() + result.z.size())},
-      {"w", std::vector<double>(result.w.data(), result.w.data() + result.w.size())}};
+  numerics::LemkeResult result = numerics::solve_lemke(problem.M, problem.q, options);
+  nlohmann::ordered_json out = {{"file", file},
+                                {"status", numerics::to_string(result.status)},
+                                {"n", problem.q.size()},
+                                {"pivots", result.pivots}};
+  // a point beyond double precision (never a solved one) is not printed: JSON has no NaN
+  if (std::isfinite(result.complementarity_error))
+    out["complementarity_error"] = result.complementarity_error;
+  if (result.z.allFinite() && result.w.allFinite()) {
+    out["z"] = std::vector<double>(result.z.data(), result.z.data() + result.z.size());
+    out["w"] = std::vector<double>(result.w.data(), result.w.data() + result.w.size());
+  } else {
+    result.message += (result.message.empty() ? "" : "; ") +
+                      std::string(
+                          "the last point has entries beyond double precision (z, w not "
+                          "printed)");
+  }
   if (!result.message.empty()) out["message"] = result.message;
   std::cout << dump(out) << "\n";
   // a ray or a pivot limit is an outcome, reported in "status"; only bad input fails

@@ -36,6 +36,7 @@ std::map<std::string, std::string> output_files(const nlohmann::ordered_json& su
 
 int packing_command(const std::vector<std::string>& arguments) {
   std::string scene_file, out_dir;
+  chains::RunLimits limits;
   po::options_description visible(
       "mimpact packing SCENE.json: the multiple impact of a planar packing of beads");
   visible.add_options()(
@@ -43,21 +44,32 @@ int packing_command(const std::vector<std::string>& arguments) {
       "write summary.json, bodies.csv, contacts.csv and the recorded series and frames into this "
       "directory instead of summary.json on stdout")(
       "delta-p", po::value<double>(), "principal impulse step (N s); overrides impact.delta_p")(
-      "quiet", "no report on stderr");
+      "data-dir", po::value<std::string>(),
+      "the directory bead lists are read from (and only from): the scene file's by default")(
+      "max-memory", po::value(&limits.memory_gb),
+      "GB the run may hold (the packing, its series and frames), 4 by default; a run that needs "
+      "more is refused before it starts")("quiet", "no report on stderr");
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
+  limits.check();
+  const std::filesystem::path out =
+      values.count("out") ? check_output_directory(out_dir) : std::filesystem::path();
 
-  const packings::PackingScene scene = packings::load_packing_scene(scene_file);
-  const packings::PackingModel model = packings::build_packing_model(scene);
+  packings::PackingScene scene = packings::load_packing_scene(scene_file);
+  if (values.count("data-dir")) scene.directory = values["data-dir"].as<std::string>();
+  const packings::PackingModel model = packings::build_packing_model(scene, limits);
   chains::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
   if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
   const bool recording =
       !scene.record.contacts.empty() || !scene.record.beads.empty() || scene.record.frames > 0;
-  if (recording && out_dir.empty() && !quiet)
+  if (recording && out.empty() && !quiet)
     std::cerr << "mimpact packing: \"record\" needs --out DIR to write its series; ignored\n";
-  const packings::PackingRun run = packings::run_packing_scene(
-      scene, model, {.impact = overrides, .record = recording && !out_dir.empty()});
+  packings::PackingRunOptions run_options;
+  run_options.impact = overrides;
+  run_options.record = recording && !out.empty();
+  run_options.limits = limits;
+  const packings::PackingRun run = packings::run_packing_scene(scene, model, run_options);
   const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
   if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
   if (run.impact.lzb.status != numerics::LzbStatus::terminated)
@@ -66,13 +78,11 @@ int packing_command(const std::vector<std::string>& arguments) {
         std::isfinite(run.impact.lzb.duration)))
     throw Error(scene_file +
                 ": the run produced a non-finite velocity, force or duration; no output written");
-  if (out_dir.empty()) {
+  if (out.empty()) {
     std::cout << summary.dump(2) << "\n";
     return 0;
   }
-  write_output_directory(out_dir, output_files(summary, model, run),
-                         {"summary.json", "bodies.csv", "contacts.csv", "forces.csv",
-                          "velocities.csv", "frame_forces.csv", "frame_velocities.csv"});
+  write_output_directory(out, output_files(summary, model, run));
   return 0;
 }
 

@@ -84,6 +84,7 @@ analysis::ConvergenceOptions convergence_options(const ChainScene& scene, const 
   options.max_halvings = request.max_rows;
   options.integrator = impact.impulse_step_options();
   options.integrator.delta_p = options.first_delta_p;
+  options.max_sample_bytes = request.limits.memory_bytes();
   validate(options, "convergence study");
   return options;
 }

@@ -64,7 +64,9 @@ void precompress(ChainModel& model, const ChainScene& scene) {
 
 }  // namespace
 
-ChainModel build_chain_model(const ChainScene& scene) {
+ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits) {
+  check_memory(model_bytes(scene.body_count(), scene.contact_count(), 1),
+               "chain.segments (" + std::to_string(scene.bead_count()) + " beads)", limits);
   const std::vector<Body> bodies = bodies_of(scene);
   const Eigen::Index n = Eigen::Index(bodies.size());
   ChainModel model;

@@ -30,7 +30,7 @@ ChainRun run_lzb(const ChainScene& scene, const ChainModel& model, const ChainRu
     const double delta_p = impulse_step(model, impact, impact_labels(options.impact));
     if (impact.delta_p) run.delta_p = delta_p;
   }
-  ImpactRecorder recorder(model, scene.record);
+  ImpactRecorder recorder(model, scene.record, 0, options.limits);
   Observers observers;
   if (record) {
     recorder.configure(impact);
@@ -56,7 +56,9 @@ ChainRun run_chain_scene(const ChainScene& scene, const ChainModel& model,
   const plugins::LzbImpactOptions impact =
       resolve_impact(scene.impact, scene.method, options.impact, scene.source);
   if (scene.method == Method::lzb) return run_lzb(scene, model, options, impact, record);
-  CompliantRun compliant = simulate_chain_compliant(model, scene.compliant, scene.record);
+  CompliantRun compliant =
+      simulate_compliant(model, build_chain_system(model), scene.compliant,
+                         record ? scene.record : RecordSpec{}, 0, options.limits);
   ChainRun run;
   run.method = Method::compliant;
   run.impact = std::move(compliant.impact);

@@ -20,9 +20,6 @@ constexpr std::int64_t kMostBeads = 100'000'000;
 // larger than any scene needs: the text is held in memory while it is parsed
 constexpr std::uintmax_t kLargestSceneFile = 64u << 20;
 
-// rows of forces.csv a compliant run may write: 1e8 rows of a few contacts are gigabytes
-constexpr double kMaxRecordedSamples = 1e8;
-
 // What the field lists cannot say alone: counts, pairings, and fields that depend on others.
 void check_bodies(const ChainScene& scene, const SceneChecks& checks) {
   if (scene.chain.segments.empty())
@@ -55,15 +52,6 @@ void check_record(const ChainScene& scene, const SceneChecks& checks) {
   };
   check(scene.record.contacts, "contacts", scene.contact_count(), "contact");
   check(scene.record.bodies, "bodies", scene.body_count(), "body");
-  const double end_time = scene.compliant.end_time.value_or(1.0);
-  const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
-  if (scene.method == Method::compliant && recording &&
-      end_time / scene.record.interval > kMaxRecordedSamples)
-    checks.fail(invalid_value_message("record.interval", scene.record.interval,
-                                      ">= compliant.end_time / " + to_text(kMaxRecordedSamples) +
-                                          " = " + to_text(end_time / kMaxRecordedSamples) +
-                                          " s (at most " + to_text(kMaxRecordedSamples) +
-                                          " rows)"));
 }
 
 // A static force only the compliant method, with a wall, can hold.

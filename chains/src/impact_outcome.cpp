@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "mimpact/chains/impact_recorder.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/kernel/registry.hpp"
 #include "mimpact/kernel/simulation.hpp"
@@ -85,8 +86,11 @@ class Impacts : public kernel::SimulationObserver {
 class CompliantWatch : public kernel::SimulationObserver {
  public:
   CompliantWatch(const RecordSpec& record, int dimension, int frame_every, bool precompressed,
-                 bool touching_at_start)
-      : record_(record), frame_every_(frame_every), precompressed_(precompressed) {
+                 bool touching_at_start, RecordingBudget budget)
+      : record_(record),
+        frame_every_(frame_every),
+        precompressed_(precompressed),
+        budget_(std::move(budget)) {
     // a striker with no gap touches at t = 0: the impact starts at once, with no closing event
     if (touching_at_start) first_contact_ = 0.0;
     series_.contacts = record.contacts;
@@ -104,7 +108,10 @@ class CompliantWatch : public kernel::SimulationObserver {
       for (double v : system.system(b).velocity()) velocities.push_back(v);
     series_.force.push_back(forces);
     series_.velocity.push_back(velocities);
-    if (frame_every_ > 0 && (series_.time.size() - 1) % std::size_t(frame_every_) == 0) {
+    const bool frame =
+        frame_every_ > 0 && (series_.time.size() - 1) % std::size_t(frame_every_) == 0;
+    budget_.add(frame);
+    if (frame) {
       frames_.time.push_back(s.time());
       frames_.force.emplace_back(history.force.data(), history.force.data() + history.force.size());
       std::vector<double> all;
@@ -135,8 +142,19 @@ class CompliantWatch : public kernel::SimulationObserver {
   bool precompressed_;
   TimeSeries series_;
   Frames frames_;
+  RecordingBudget budget_;
   double first_contact_ = -1.0, last_opening_ = -1.0;
 };
+
+// What one sample and one frame of a compliant run keep (bytes), as ImpactRecorder counts them.
+RecordingBudget compliant_budget(const ContactModel& model, const RecordSpec& record,
+                                 int frame_every, const RunLimits& limits) {
+  const double columns =
+      double(record.contacts.size() + record.bodies.size() * std::size_t(model.dimension) + 1);
+  const double all = double(model.contact_count() + model.mass.size());
+  return RecordingBudget(150.0 + 60.0 * columns, 60.0 * all, limits,
+                         sampling_fields(record, true, frame_every));
+}
 
 // Overlaps below this share of the impact's are never integrated (CompliantOptions): their
 // force is below 1e-9 of the peak force.
@@ -188,7 +206,7 @@ ImpactOutcome simulate_impact_numerics(const ContactModel& model,
 CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                 const CompliantSpec& spec, const RecordSpec& record,
-                                int frame_every) {
+                                int frame_every, const RunLimits& limits) {
   plugins::register_plugins();
   // Looser than kLoosestTolerance, the integration's velocity errors set off collisions in the
   // wake of the wave that cost more steps than the looser control saves.
@@ -214,11 +232,21 @@ CompliantRun simulate_compliant(const ContactModel& model,
       {}, simulation_options);
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
-  if (recording) simulation.schedule_outputs(0.0, record.interval, end);
+  RecordingBudget budget = compliant_budget(model, record, frame_every, limits);
+  if (recording) {
+    // samples from t = 0 to the first arrival and through the shortest possible impact
+    const double samples =
+        (*std::min_element(model.striker_arrivals.begin(), model.striker_arrivals.end()) +
+         impact_duration_bound(model)) /
+        record.interval;
+    budget.check_estimate(samples, frame_every > 0 ? samples / double(frame_every) : 0.0);
+    simulation.schedule_outputs(0.0, record.interval, end);
+  }
   const bool precompressed = model.precompression > 0.0;
   CompliantWatch watch(record, model.dimension, frame_every, precompressed,
                        std::find(model.striker_arrivals.begin(), model.striker_arrivals.end(),
-                                 0.0) != model.striker_arrivals.end());
+                                 0.0) != model.striker_arrivals.end(),
+                       std::move(budget));
   simulation.add_observer(watch);
   const auto clock = std::chrono::steady_clock::now();
   const kernel::RunSummary summary = simulation.run(0.0, end);

@@ -44,8 +44,29 @@ std::string TimeSeries::velocities_csv() const {
   return csv(time, velocity, labels);
 }
 
-ImpactRecorder::ImpactRecorder(const ContactModel& model, RecordSpec record, int frame_every)
-    : model_(model), record_(std::move(record)), frame_every_(frame_every) {
+namespace {
+
+// What a sample keeps (bytes): its own record, the impulses it samples, and the series and CSV
+// rows it becomes (a number is 8 bytes held, 25 written)
+constexpr double kSampleOverhead = 150.0;
+constexpr double kBytesPerColumn = 60.0;
+
+}  // namespace
+
+std::string sampling_fields(const RecordSpec& record, bool by_time, int frame_every) {
+  return (by_time ? "record.interval = " + to_text(record.interval) + " s"
+                  : "record.every = " + std::to_string(record.every)) +
+         (frame_every > 0 ? ", record.frames = " + std::to_string(frame_every) : "");
+}
+
+namespace {}  // namespace
+
+ImpactRecorder::ImpactRecorder(const ContactModel& model, RecordSpec record, int frame_every,
+                               const RunLimits& limits)
+    : model_(model),
+      record_(std::move(record)),
+      frame_every_(frame_every),
+      budget_(0.0, 0.0, limits, "") {
   for (int body : record_.bodies)
     for (int k = 0; k < model_.dimension; ++k)
       recorded_coordinates_.push_back(Eigen::Index(body) * model_.dimension + k);
@@ -64,12 +85,29 @@ ImpactRecorder::ImpactRecorder(const ContactModel& model, RecordSpec record, int
   std::sort(needed.begin(), needed.end());
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
   sampled_ = needed;
+  const double columns = double(record_.contacts.size() + recorded_coordinates_.size() + 1);
+  const double all = double(model_.contact_count() + model_.mass.size());
+  budget_ =
+      RecordingBudget(kSampleOverhead + 8.0 * double(sampled_.size()) + kBytesPerColumn * columns,
+                      kBytesPerColumn * all, limits, "");
 }
 
-void ImpactRecorder::configure(plugins::LzbImpactOptions& options) const {
+void ImpactRecorder::configure(plugins::LzbImpactOptions& options) {
   options.impulse_steps.sample_every = record_.every;
   options.impulse_steps.sampled_contacts = sampled_;
   options.adaptive.sample_interval = record_.interval;
+  const bool adaptive = options.chosen_integrator() == plugins::LzbIntegrator::adaptive;
+  double samples;
+  if (adaptive) {
+    samples = impact_duration_bound(model_) / record_.interval;
+  } else {
+    const double delta_p = options.delta_p
+                               ? *options.delta_p
+                               : options.relative_delta_p.value_or(1.0) * contact_impulse(model_);
+    samples = largest_momentum(model_) / delta_p / double(record_.every);
+  }
+  budget_.name(sampling_fields(record_, adaptive, frame_every_));
+  budget_.check_estimate(samples, frame_every_ > 0 ? samples / double(frame_every_) : 0.0);
 }
 
 void ImpactRecorder::observe(const numerics::ImpactSample& sample) {
@@ -83,6 +121,7 @@ void ImpactRecorder::observe(const numerics::ImpactSample& sample) {
   };
   Sample kept{impacts_seen_ - 1, sample.time, {}, {}};
   kept.frame = frame_every_ > 0 && samples_.size() % std::size_t(frame_every_) == 0;
+  budget_.add(kept.frame);
   for (Eigen::Index contact : sampled_) kept.impulse.push_back(value_of(sample.impulse, contact));
   if (kept.frame)
     for (Eigen::Index contact : sampled_) kept.force.push_back(value_of(sample.force, contact));

@@ -1,6 +1,8 @@
 #include "mimpact/numerics/lcp_file.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 
 #include "mimpact/common/error.hpp"
@@ -9,12 +11,19 @@ namespace mimpact::numerics {
 
 namespace {
 
-// Reads the next number or throws, naming the file and the field expected.
+// Reads the next number or throws, naming the file and the field expected: a finite number,
+// the whole word (1e999, nan and 1.5x are refused, not read as inf, nothing or 1.5).
 double next_number(std::istream& in, const std::string& source, const std::string& field) {
-  double value;
-  if (!(in >> value))
-    throw InvalidInput(source + ": expected " + field + ", found " +
-                       (in.eof() ? "end of file" : "something not a number"));
+  std::string word;
+  if (!(in >> word)) throw InvalidInput(source + ": expected " + field + ", found end of file");
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(word.c_str(), &end);
+  if (end != word.c_str() + word.size() || word.empty())
+    throw InvalidInput(source + ": expected " + field + ", found something not a number");
+  if (!std::isfinite(value) || (errno == ERANGE && std::abs(value) > 1.0))
+    throw InvalidInput(source + ": " + field + " = " + word.substr(0, 40) +
+                       " is invalid; allowed: a finite number of magnitude at most 1.8e308");
   return value;
 }
 

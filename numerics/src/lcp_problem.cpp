@@ -24,9 +24,12 @@ double complementarity_error(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
                              const Eigen::VectorXd& z) {
   if (q.size() == 0) return 0.0;
   const Eigen::VectorXd w = M * z + q;
+  // a point beyond double precision verifies nothing: its comparisons would pass with NaN
+  if (!z.allFinite() || !w.allFinite()) return INFINITY;
   const double residual = z.cwiseMin(w).cwiseAbs().maxCoeff();
   const double matrix_norm = M.cwiseAbs().rowwise().sum().maxCoeff();
   const double scale = std::max(q.cwiseAbs().maxCoeff(), matrix_norm * z.cwiseAbs().maxCoeff());
+  if (!std::isfinite(scale)) return INFINITY;
   if (scale == 0.0) return residual;
   return residual / scale;
 }

@@ -141,7 +141,7 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
   reset(gives_nothing_back_, false);
   for (std::size_t j = 0; j < m; ++j) {
     const ContactLaw& law = laws[j];
-    const double e2 = law.restitution * law.restitution;
+    const double e2 = law.effective_restitution() * law.effective_restitution();
     const bool mono = law.model == ComplianceModel::mono_stiffness;
     stiffness_[j] = law.stiffness;
     exponent_[j] = law.exponent;
@@ -149,7 +149,7 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
     expansion_rate_[j] = mono || e2 == 0.0 ? 1.0 : 1.0 / e2;
     // released at delta_c (1 - e^2)^(1/(1+eta)) (mono-stiffness) or at 0 (bi-stiffness)
     release_factor_[j] = mono ? std::pow(1.0 - e2, 1.0 / (1.0 + law.exponent)) : 0.0;
-    gives_nothing_back_[j] = law.restitution == 0.0;
+    gives_nothing_back_[j] = law.effective_restitution() == 0.0;
     // the natural scales of contact j: the impulse that stops V, the indentation that stores
     // the energy V^2 / (2 H_jj)
     const double h = diagonal(Index(j));

@@ -91,8 +91,9 @@ void LzbAsynchronousIntegrator::prepare(const Eigen::VectorXd& diagonal,
     Law& constants = laws_[j];
     constants.coefficient = law.force_coefficient();
     constants.power = law.exponent / (1.0 + law.exponent);
-    constants.restitution = law.restitution;
-    constants.inverse_e2 = law.restitution > 0.0 ? 1.0 / (law.restitution * law.restitution) : 0.0;
+    const double e = law.effective_restitution();
+    constants.restitution = e;
+    constants.inverse_e2 = e > 0.0 ? 1.0 / (e * e) : 0.0;
     constants.h_jj = diagonal(Index(j));
     constants.tolerance_u = options_.velocity_tolerance(diagonal(Index(j)));
     constants.tolerance_energy = options_.energy_tolerance(diagonal(Index(j)));

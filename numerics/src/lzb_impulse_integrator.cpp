@@ -81,8 +81,9 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen:
     force_coefficient_[j] = law.force_coefficient();
     force_power_[j] = law.exponent / (1.0 + law.exponent);
     one_plus_exponent_[j] = 1.0 + law.exponent;
-    restitution_[j] = law.restitution;
-    inverse_e2_[j] = law.restitution > 0.0 ? 1.0 / (law.restitution * law.restitution) : 0.0;
+    const double e = law.effective_restitution();
+    restitution_[j] = e;
+    inverse_e2_[j] = e > 0.0 ? 1.0 / (e * e) : 0.0;
     mono_stiffness_[j] = law.model == ComplianceModel::mono_stiffness;
     tolerance_u_[j] = options_.velocity_tolerance(diagonal(Index(j)));
     tolerance_energy_[j] = options_.energy_tolerance(diagonal(Index(j)));

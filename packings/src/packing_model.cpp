@@ -6,10 +6,13 @@
 #include <cmath>
 #include <fstream>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
+#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/kernel/json_document.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/numerics/delassus.hpp"
@@ -54,18 +57,59 @@ std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
   return beads;
 }
 
-// "x,y,radius" then one bead per line.
-std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory) {
-  const std::filesystem::path path = directory / list.file;
+// The memory a bead takes with its contacts (a bead touches 3 others on average in the plane)
+double bead_bytes() { return chains::model_bytes(1.0, 3.0, 2); }
+
+// The bead list's file: inside `directory` (the scene's, or --data-dir), a regular file. Its
+// path is the scene's, so messages may name it; its content is never echoed.
+std::filesystem::path bead_file(const BeadListSpec& list, const std::filesystem::path& directory) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path root = fs::weakly_canonical(fs::absolute(directory, error), error);
+  const fs::path path = fs::weakly_canonical(fs::absolute(directory / list.file, error), error);
+  const auto [outside, _] = std::mismatch(root.begin(), root.end(), path.begin(), path.end());
+  if (list.file.empty() || outside != root.end())
+    throw InvalidInput("beads.file = " + kernel::json_excerpt(nlohmann::json(list.file)) +
+                       " is not inside " + root.string() +
+                       "; allowed: a file in the scene's directory or below it (--data-dir, or "
+                       "data_dir= in Python, chooses another directory)");
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw InvalidInput("beads.file: " + path.string() + " does not exist");
+  if (!fs::is_regular_file(status))
+    throw InvalidInput("beads.file: " + path.string() +
+                       " is not a regular file (a directory, device or pipe); allowed: a CSV file");
+  return path;
+}
+
+// A cell of the list as a number: the whole cell, spaces aside, and finite.
+std::optional<double> number_of(std::string cell) {
+  const std::size_t first = cell.find_first_not_of(" \t\r");
+  const std::size_t last = cell.find_last_not_of(" \t\r");
+  if (first == std::string::npos) return std::nullopt;
+  cell = cell.substr(first, last - first + 1);
+  char* end = nullptr;
+  const double value = std::strtod(cell.c_str(), &end);
+  if (end != cell.c_str() + cell.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// "x,y,radius" then one bead per line. Messages name the line and column, never their content
+// (a scene from elsewhere must not make mimpact show a file's lines).
+std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory,
+                               const chains::RunLimits& limits) {
+  const std::filesystem::path path = bead_file(list, directory);
   std::ifstream in(path);
   if (!in) throw InvalidInput("beads.file: cannot open " + path.string() + " for reading");
   auto fail = [&](std::size_t line, const std::string& what) -> void {
     throw InvalidInput(path.string() + " line " + std::to_string(line) + ": " + what);
   };
+  static const char* const kColumns[] = {"x", "y", "radius"};
   std::string line;
   std::getline(in, line);
-  if (line.rfind("x,y,radius", 0) != 0)
-    fail(1, "the header is \"" + line + "\"; allowed: x,y,radius (m)");
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
+  if (line.find_last_not_of(" \t\r") != std::string::npos)
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+  if (line != "x,y,radius") fail(1, "is not the header; allowed: x,y,radius (m)");
   std::vector<Body> beads;
   for (std::size_t number = 2; std::getline(in, line); ++number) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -75,14 +119,18 @@ std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::
     int count = 0;
     for (; std::getline(fields, cell, ','); ++count) {
       if (count == 3) fail(number, "more than 3 columns; allowed: x,y,radius");
-      char* end = nullptr;
-      values[count] = std::strtod(cell.c_str(), &end);
-      if (end == cell.c_str() || !std::isfinite(values[count]))
-        fail(number, "\"" + cell + "\" is not a finite number");
+      const std::optional<double> value = number_of(cell);
+      if (!value)
+        fail(number, std::string("column ") + kColumns[count] + " is not a finite number");
+      values[count] = *value;
     }
     if (count != 3) fail(number, std::to_string(count) + " columns; allowed: x,y,radius");
     if (!(values[2] > 0.0)) fail(number, invalid_value_message("radius", values[2], "> 0 (m)"));
     beads.push_back({{values[0], values[1]}, values[2], list.material});
+    if (beads.size() % 100'000 == 0)
+      chains::check_memory(double(beads.size()) * bead_bytes(),
+                           "beads.file (" + std::to_string(beads.size()) + " beads so far)",
+                           limits);
   }
   if (beads.empty())
     throw InvalidInput(path.string() + ": the bead list is empty; allowed: at least one bead");
@@ -107,11 +155,18 @@ void near(const Tree& tree, const Eigen::Vector2d& centre, double reach, Visit&&
 
 class PackingBuilder {
  public:
-  PackingBuilder(const PackingScene& scene, PackingModel& model) : scene_(scene), model_(model) {}
+  PackingBuilder(const PackingScene& scene, PackingModel& model, const chains::RunLimits& limits)
+      : scene_(scene), model_(model), limits_(limits) {}
 
   void build() {
+    if (scene_.lattice)
+      chains::check_memory(
+          double(scene_.lattice->rows) * double(scene_.lattice->columns) * bead_bytes(),
+          "lattice (" + std::to_string(scene_.lattice->rows) + " x " +
+              std::to_string(scene_.lattice->columns) + " beads)",
+          limits_);
     bodies_ = scene_.lattice ? lattice_beads(*scene_.lattice)
-                             : listed_beads(*scene_.beads, scene_.directory);
+                             : listed_beads(*scene_.beads, scene_.directory, limits_);
     model_.bead_count = Eigen::Index(bodies_.size());
     if (scene_.lattice) {
       model_.rows = scene_.lattice->rows;
@@ -318,15 +373,16 @@ class PackingBuilder {
 
   const PackingScene& scene_;
   PackingModel& model_;
+  const chains::RunLimits& limits_;
   std::vector<Body> bodies_;
   double largest_radius_ = 0.0;
 };
 
 }  // namespace
 
-PackingModel build_packing_model(const PackingScene& scene) {
+PackingModel build_packing_model(const PackingScene& scene, const chains::RunLimits& limits) {
   PackingModel model;
-  PackingBuilder(scene, model).build();
+  PackingBuilder(scene, model, limits).build();
   return model;
 }
 

@@ -35,7 +35,7 @@ PackingRun run_lzb(const PackingScene& scene, const PackingModel& model,
         chains::impulse_step(model, impact, chains::impact_labels(options.impact));
     if (impact.delta_p) run.delta_p = delta_p;
   }
-  chains::ImpactRecorder recorder(model, scene.chain_record(), scene.record.frames);
+  chains::ImpactRecorder recorder(model, scene.chain_record(), scene.record.frames, options.limits);
   if (record) recorder.configure(impact);
   run.impact = chains::simulate_impacts(model, build_packing_system(model), impact,
                                         record ? &recorder : nullptr);
@@ -98,9 +98,10 @@ PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& mode
   const plugins::LzbImpactOptions impact =
       chains::resolve_impact(scene.impact, scene.method, options.impact, scene.source);
   if (scene.method == chains::Method::lzb) return run_lzb(scene, model, options, impact, record);
-  chains::CompliantRun compliant = chains::simulate_compliant(
-      model, build_packing_system(model), scene.compliant,
-      record ? scene.chain_record() : chains::RecordSpec{}, record ? scene.record.frames : 0);
+  chains::CompliantRun compliant =
+      chains::simulate_compliant(model, build_packing_system(model), scene.compliant,
+                                 record ? scene.chain_record() : chains::RecordSpec{},
+                                 record ? scene.record.frames : 0, options.limits);
   PackingRun run;
   run.impact = std::move(compliant.impact);
   run.series = std::move(compliant.series);

@@ -157,6 +157,7 @@ std::vector<numerics::ContactLaw> compliant_laws(const kernel::NonSmoothDynamica
                          "(docs/model.md, section 3); a mono-stiffness law with e < 1 has no "
                          "time-domain form here");
     laws.push_back(contact);
+    laws.back().restitution = contact.effective_restitution();
   }
   return laws;
 }

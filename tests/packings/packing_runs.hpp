@@ -29,9 +29,11 @@ struct PackingCase {
   packings::PackingRun run;
 };
 
-inline PackingCase run_packing(const std::string& text) {
+// `directory`: where its bead lists are (the source tree by default)
+inline PackingCase run_packing(const std::string& text,
+                               const std::string& directory = MIMPACT_SOURCE_DIR) {
   PackingCase result;
-  result.scene = packings::parse_packing_scene(text, "test scene", MIMPACT_SOURCE_DIR);
+  result.scene = packings::parse_packing_scene(text, "test scene", directory);
   result.model = packings::build_packing_model(result.scene);
   result.run = packings::run_packing_scene(result.scene, result.model);
   return result;

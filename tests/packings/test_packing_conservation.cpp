@@ -85,7 +85,8 @@ Eigen::Index mirror_of(const packings::PackingModel& model, Eigen::Index body, d
   return body;
 }
 
-// Seven rows of 5 and 4 beads of 5 mm in turn, centred on x = 0; the file's absolute path.
+// Seven rows of 5 and 4 beads of 5 mm in turn, centred on x = 0, in the temporary directory;
+// the file's name.
 std::string hexagonal_patch() {
   const auto path = std::filesystem::temp_directory_path() / "mimpact_hexagonal_patch.csv";
   std::ofstream out(path);
@@ -98,7 +99,7 @@ std::string hexagonal_patch() {
       std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", x, std::sqrt(3.0) * a * r, a);
       out << line;
     }
-  return path.string();
+  return path.filename().string();
 }
 
 // `round_off`: the largest asymmetry allowed (m/s, of a 1 m/s strike). The LZB integrators
@@ -131,9 +132,11 @@ TEST(PackingConservation, StrikeOnTheSymmetryAxisGivesAMirrorResult) {
     // a hexagonal patch of rows of 5 and 4 beads in turn, symmetric about x = 0 (a lattice of
     // equal rows is not): a bead list, struck at the middle of its bottom row
     expect_mirror(
-        run_packing("{" + kSteel + R"(, "beads": {"file": ")" + hexagonal_patch() +
-                    R"("}, "strikers": [{"target": [2], "radius": 0.005, "velocity": [0, 1]}], )" +
-                    impact + "}"),
+        run_packing(
+            "{" + kSteel + R"(, "beads": {"file": ")" + hexagonal_patch() +
+                R"("}, "strikers": [{"target": [2], "radius": 0.005, "velocity": [0, 1]}], )" +
+                impact + "}",
+            std::filesystem::temp_directory_path()),
         0.0, round_off);
   }
 }

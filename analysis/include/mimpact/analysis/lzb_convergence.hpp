@@ -40,13 +40,9 @@ struct ConvergenceStudy {
   Eigen::VectorXd finest_velocities;        // v+ of the finest run
   bool converged = false;
   // Why the study ended before max_halvings without converging ("" otherwise): the next run
-  // would store more samples than kSampleBudgetBytes.
+  // would store more samples than ConvergenceOptions::max_sample_bytes.
   std::string stopped;
 };
-
-// The comparison along the impact keeps every step of a run (P and v): a study stops before a
-// halving whose run would store more than this.
-constexpr double kSampleBudgetBytes = 4e9;
 
 // What a study runs and when it stops.
 struct ConvergenceOptions {
@@ -55,6 +51,9 @@ struct ConvergenceOptions {
   double epsilon = 0.01;            // bound on max eta_h (criterion 48)
   int max_halvings = 12;            // rows at most
   numerics::LzbOptions integrator;  // every run's options but delta_p and sampling
+  // The comparison along the impact keeps every step of a run (P and v): a study stops before
+  // a halving whose runs would hold more than this (bytes).
+  double max_sample_bytes = 4e9;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -63,6 +62,7 @@ struct ConvergenceOptions {
     field("epsilon", self.epsilon, positive());
     field("max_halvings", self.max_halvings, at_least(1));
     field("integrator", self.integrator);
+    field("max_sample_bytes", self.max_sample_bytes, positive("bytes"));
   }
 };
 

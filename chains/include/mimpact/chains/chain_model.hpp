@@ -10,6 +10,7 @@
 #include "mimpact/analysis/lzb_convergence.hpp"
 #include "mimpact/chains/chain_scene.hpp"
 #include "mimpact/chains/contact_model.hpp"
+#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 
@@ -27,7 +28,9 @@ struct ChainModel : ContactModel {
   Eigen::Index first_bead = 0;
 };
 
-ChainModel build_chain_model(const ChainScene& scene);
+// Throws InvalidInput for a chain that needs more memory than `limits` allow, and for bodies
+// whose masses leave double precision.
+ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits = {});
 
 // The chain in the kernel's terms: one LagrangianLinearTIDS per body (no force), one
 // interaction per contact with a LinearRelation and an LzbLaw.

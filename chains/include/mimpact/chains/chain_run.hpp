@@ -8,6 +8,7 @@
 #include "mimpact/chains/chain_model.hpp"
 #include "mimpact/chains/chain_scene.hpp"
 #include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/chains/run_limits.hpp"
 
 // One run of a chain scene by the method it chooses: what `mimpact chain` and the Python
 // module's run_chain() share.
@@ -16,6 +17,7 @@ namespace mimpact::chains {
 struct ChainRunOptions {
   ImpactOverrides impact;  // over the scene's "impact" (resolve_impact)
   bool record = true;      // sample the scene's "record" series
+  RunLimits limits;        // the memory the model and the recording may take
   // Sees the LZB samples too, at least every progress_every impulse steps (a progress report).
   numerics::ImpactObserver* progress = nullptr;
   std::int64_t progress_every = 2'000'000;

@@ -6,6 +6,7 @@
 
 #include "mimpact/chains/chain_scene.hpp"
 #include "mimpact/chains/contact_model.hpp"
+#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/chains/time_series.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
@@ -62,11 +63,13 @@ struct CompliantRun {
 // The impact computed with the compliant contacts integrated in time (method "compliant"): the
 // same outcome fields (impulses, peaks and their times from the first contact; steps are the
 // integration's), the recorded time series, sampled every record.interval, and every
-// frame_every-th sample a frame of the whole scene (0: none).
+// frame_every-th sample a frame of the whole scene (0: none), within the memory of `limits`
+// (InvalidInput before the run when the samples of the impact's shortest possible duration
+// would exceed it, and during it when they do).
 CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                 const CompliantSpec& spec, const RecordSpec& record,
-                                int frame_every = 0);
+                                int frame_every = 0, const RunLimits& limits = {});
 
 // Where the kinetic energy of a scene's impacts went (J):
 //   kinetic_before + potential_before + work_of_forces

@@ -5,21 +5,31 @@
 #include "mimpact/chains/chain_scene.hpp"
 #include "mimpact/chains/contact_model.hpp"
 #include "mimpact/chains/impact_outcome.hpp"
+#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/chains/time_series.hpp"
 
 namespace mimpact::chains {
 
+// "record.interval = 1e-07 s, record.frames = 4": what sets the number of samples, for messages.
+std::string sampling_fields(const RecordSpec& record, bool by_time, int frame_every);
+
 // Samples the LZB steps of a scene's impacts (pass it as the impact observer, with the sampling
 // it asks for) and gives the time series of RecordSpec once the run is over, and every
-// frame_every-th sample a frame of the whole scene (0: none).
+// frame_every-th sample a frame of the whole scene (0: none). What it keeps stays within the
+// memory of `limits`: refused before the run by estimate (configure), the run stopped if the
+// estimate fell short.
 class ImpactRecorder : public numerics::ImpactObserver {
  public:
-  ImpactRecorder(const ContactModel& model, RecordSpec record, int frame_every = 0);
+  ImpactRecorder(const ContactModel& model, RecordSpec record, int frame_every = 0,
+                 const RunLimits& limits = {});
 
   // The sampling it needs: every record.every impulse steps or record.interval seconds of
   // the adaptive integration, these interactions (the recorded contacts and the ones touching
   // recorded bodies, whose impulses give the bodies' velocities; all of them for frames).
-  void configure(plugins::LzbImpactOptions& options) const;
+  // Throws InvalidInput when the samples it would take at the least (the impulse steps'
+  // largest momentum over delta_p, or the adaptive integration's shortest compression over the
+  // interval) exceed the limits.
+  void configure(plugins::LzbImpactOptions& options);
   void observe(const numerics::ImpactSample& sample) override;
   TimeSeries series(const ImpactOutcome& impact) const;
   Frames frames(const ImpactOutcome& impact) const;
@@ -43,6 +53,7 @@ class ImpactRecorder : public numerics::ImpactObserver {
   std::vector<Eigen::Index> recorded_coordinates_;
   std::vector<Sample> samples_;
   std::size_t impacts_seen_ = 0;
+  RecordingBudget budget_;
 };
 
 }  // namespace mimpact::chains

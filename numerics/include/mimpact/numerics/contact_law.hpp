@@ -38,6 +38,16 @@ struct ContactLaw {
     field("model", self.model);
   }
 
+  // Below this restitution the energy a contact gives back, e^2 of its compression work, is
+  // under half an ulp of that work (e^2 < 2^-54): the integrators release it at once, exactly
+  // as for e = 0. Integrating the give-back would take steps e^2 times shorter: below e = 1e-154
+  // 1/e^2 overflows, above it the impact does not end in any reasonable time.
+  static constexpr double kNegligibleRestitution = 0x1p-27;
+  // e as the integrators use it: 0 below kNegligibleRestitution.
+  double effective_restitution() const {
+    return restitution < kNegligibleRestitution ? 0.0 : restitution;
+  }
+
   // c(eta) K^(1/(1+eta)): the force for a potential energy E is this times E^(eta/(1+eta)),
   // the law F = K delta^eta rewritten with E = K delta^(1+eta) / (1+eta).
   double force_coefficient() const;

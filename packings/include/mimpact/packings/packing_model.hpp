@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "mimpact/chains/contact_model.hpp"
+#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/packings/packing_scene.hpp"
 
@@ -49,8 +50,9 @@ struct PackingModel : chains::ContactModel {
 // Places the beads, walls and strikers, finds the closed contacts by a neighbour search
 // (Boost.Geometry's R-tree) and assembles W, H and u-. Throws InvalidInput naming the bodies for
 // beads that overlap, a bead in a wall, an empty bead list, a striker whose place overlaps a
-// bead or a wall, and a packing struck by no approaching striker.
-PackingModel build_packing_model(const PackingScene& scene);
+// bead or a wall, and a packing struck by no approaching striker; and before building, for a
+// packing that needs more memory than `limits` allow.
+PackingModel build_packing_model(const PackingScene& scene, const chains::RunLimits& limits = {});
 
 // The packing in the kernel's terms: one LagrangianLinearTIDS of two coordinates per body, one
 // interaction per contact with a LinearRelation (the frozen normal) and an LzbLaw.

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mimpact/chains/impact_outcome.hpp"
+#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/chains/time_series.hpp"
 #include "mimpact/packings/packing_model.hpp"
 #include "mimpact/packings/packing_scene.hpp"
@@ -16,6 +17,7 @@ namespace mimpact::packings {
 struct PackingRunOptions {
   chains::ImpactOverrides impact;  // over the scene's "impact" (chains::resolve_impact)
   bool record = true;              // sample the scene's "record"
+  chains::RunLimits limits;        // the memory the recording may take
 };
 
 struct PackingRun {

@@ -1,0 +1,85 @@
+#include "mimpact/chains/run_limits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "mimpact/common/error.hpp"
+
+namespace mimpact::chains {
+
+namespace {
+
+// "3.04e+295"
+std::string count_text(double count) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", count);
+  return text;
+}
+
+// "1.2 GB", "850 MB"
+std::string size_text(double bytes) {
+  char text[32];
+  if (bytes >= 1e9)
+    std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
+  else
+    std::snprintf(text, sizeof text, "%.3g MB", bytes / 1e6);
+  return text;
+}
+
+}  // namespace
+
+void RunLimits::check() const {
+  if (!(memory_gb > 0.0 && std::isfinite(memory_gb)))
+    throw InvalidInput(invalid_value_message(memory_option, memory_gb, "> 0 (GB), finite"));
+}
+
+double model_bytes(double bodies, double contacts, int dimension) {
+  return 1000.0 * double(dimension) * (bodies + contacts);
+}
+
+void check_memory(double bytes, const std::string& what, const RunLimits& limits) {
+  if (!(bytes > limits.memory_bytes())) return;
+  throw InvalidInput(what + " needs about " + size_text(bytes) + " of memory; allowed: at most " +
+                     size_text(limits.memory_bytes()) + " (raise the limit with " +
+                     limits.memory_option + ", in GB)");
+}
+
+double impact_duration_bound(const ContactModel& model) {
+  double shortest = INFINITY;
+  for (Eigen::Index j = 0; j < model.contact_count(); ++j) {
+    const double u = model.u_minus(j);
+    if (!(u < 0.0)) continue;
+    const numerics::ContactLaw& law = model.laws[std::size_t(j)];
+    const double a = 1.0 / (1.0 + law.exponent);
+    const double quarter_period =
+        std::sqrt(std::numbers::pi) * std::tgamma(1.0 + a) / std::tgamma(0.5 + a);
+    const double reduced_mass = 1.0 / model.H.coeff(j, j);
+    const double overlap =
+        std::pow((1.0 + law.exponent) * reduced_mass * u * u / (2.0 * law.stiffness), a);
+    shortest = std::min(shortest, quarter_period * overlap / -u);
+  }
+  return std::isfinite(shortest) ? shortest : 0.0;
+}
+
+RecordingBudget::RecordingBudget(double sample_bytes, double frame_bytes, const RunLimits& limits,
+                                 std::string fields)
+    : sample_bytes_(sample_bytes),
+      frame_bytes_(frame_bytes),
+      limits_(limits),
+      fields_(std::move(fields)) {}
+
+void RecordingBudget::check_estimate(double samples, double frames) const {
+  check_memory(samples * sample_bytes_ + frames * frame_bytes_,
+               "the recording (" + fields_ + ": at least " + count_text(samples) + " samples" +
+                   (frames > 0.0 ? ", " + count_text(frames) + " frames" : "") + ")",
+               limits_);
+}
+
+void RecordingBudget::add(bool frame) {
+  kept_ += sample_bytes_ + (frame ? frame_bytes_ : 0.0);
+  if (kept_ > limits_.memory_bytes())
+    check_memory(kept_, "the recording (" + fields_ + ") outgrew its estimate: it", limits_);
+}
+
+}  // namespace mimpact::chains
