@@ -35,9 +35,11 @@ struct ContactModel {
 // Kinetic energy (J) of the bodies moving with `velocity` (per coordinate).
 double kinetic_energy(const ContactModel& model, const Eigen::VectorXd& velocity);
 
-// The overlap (m) that sets the contacts' scale: the largest compression of a lone contact
-// struck at its approach speed, ((1 + eta) m u^2 / (2 K))^(1 / (1 + eta)), the smallest over
-// the approaching contacts; infinite when no contact approaches.
+// The largest compression (m) of contact j alone, struck at its approach speed u_j-:
+// ((1 + eta) m u^2 / (2 K))^(1 / (1 + eta)), m = 1 / H_jj.
+double lone_overlap(const ContactModel& model, Eigen::Index j);
+// The overlap (m) that sets the contacts' scale: lone_overlap, the smallest over the
+// approaching contacts; infinite when no contact approaches.
 double impact_overlap(const ContactModel& model);
 
 // The impulse that sets the impact's scale (N s): the smallest momentum m |v| of a moving
