@@ -30,9 +30,12 @@ done
 echo "== ASan + UBSan build, unit tests"
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIMPACT_SANITIZE=ON -DMIMPACT_WERROR=ON \
   -DMIMPACT_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build build/sanitize -j"$jobs" --target mimpact_unit_tests
+cmake --build build/sanitize -j"$jobs" --target mimpact_unit_tests mimpact
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build/sanitize -j"$jobs" -L unit --output-on-failure
+
+echo "== fuzzers, seeded and bounded: the command line (Release, ASan + UBSan), the Python module"
+bash scripts/fuzz.sh
 
 echo "== the kernel and its tests without plugins/"
 cmake -S . -B build/kernel-only -DCMAKE_BUILD_TYPE=Release -DMIMPACT_BUILD_PLUGINS=OFF -DMIMPACT_WERROR=ON >/dev/null

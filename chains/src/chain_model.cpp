@@ -122,6 +122,7 @@ ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits) {
   model.W.setFromTriplets(gradients.begin(), gradients.end());
   model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
   model.u_minus = model.W.transpose() * model.velocity;
+  check_impact_scales(model);
   return model;
 }
 

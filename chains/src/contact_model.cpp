@@ -20,6 +20,21 @@ double lone_overlap(const ContactModel& model, Eigen::Index j) {
                   1.0 / (1.0 + law.exponent));
 }
 
+void check_impact_scales(const ContactModel& model) {
+  for (Eigen::Index j = 0; j < model.contact_count(); ++j) {
+    const double u = model.u_minus(j);
+    if (!(u < 0.0)) continue;
+    const double energy = 0.5 * u * u / model.H.coeff(j, j);
+    if (!(energy >= 1e-250 && energy <= 1e250))
+      throw InvalidInput(
+          "contact " + std::to_string(j) +
+          " approaches with the energy m u^2 / 2 = " + to_text(energy) + " J (u = " + to_text(u) +
+          " m/s, m = " + to_text(1.0 / model.H.coeff(j, j)) +
+          " kg); allowed: between 1e-250 and 1e250 J, where double precision resolves the "
+          "impact (check the densities, radii and speeds)");
+  }
+}
+
 double impact_overlap(const ContactModel& model) {
   double smallest = INFINITY;
   for (Eigen::Index j = 0; j < model.contact_count(); ++j)

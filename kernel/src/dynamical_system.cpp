@@ -8,7 +8,8 @@ namespace mimpact::kernel {
 
 namespace {
 
-void check_state(const std::string& name, const VectorXd& q, const VectorXd& v) {
+void check_state(const std::string& name, const Eigen::Ref<const VectorXd>& q,
+                 const Eigen::Ref<const VectorXd>& v) {
   if (q.size() != v.size())
     throw InvalidInput("system '" + name + "': position has " + std::to_string(q.size()) +
                        " entries and velocity " + std::to_string(v.size()) +
@@ -32,6 +33,7 @@ void DynamicalSystem::set_state(const Eigen::Ref<const VectorXd>& position,
     throw InvalidInput("system '" + name_ + "': a state of size " +
                        std::to_string(position.size()) +
                        "; allowed: " + std::to_string(dimension()));
+  check_state(name_, position, velocity);
   position_ = position;
   velocity_ = velocity;
 }

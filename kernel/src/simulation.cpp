@@ -43,17 +43,55 @@ Simulation::Simulation(std::shared_ptr<NonSmoothDynamicalSystem> system,
   validate(options_, "Simulation");
 }
 
+namespace {
+
+void check_time(double value, const std::string& what) {
+  if (!std::isfinite(value)) throw InvalidInput(invalid_value_message(what, value, "finite (s)"));
+}
+
+}  // namespace
+
+void Simulation::add_observer(SimulationObserver& observer) {
+  if (running_) throw Error("Simulation: add_observer while the simulation runs");
+  observers_.push_back(&observer);
+}
+
+void Simulation::schedule_output(double time) {
+  if (running_) throw Error("Simulation: schedule_output while the simulation runs");
+  check_time(time, "output time");
+  outputs_.push(time);
+}
+
 void Simulation::schedule_outputs(double start, double interval, double end) {
-  if (!(interval > 0.0))
-    throw InvalidInput(invalid_value_message("output interval", interval, "> 0 (s)"));
-  const auto count = std::int64_t(std::floor((end - start) / interval + 1e-9));
-  for (std::int64_t k = 0; k <= count; ++k) outputs_.push(start + double(k) * interval);
+  if (running_) throw Error("Simulation: schedule_outputs while the simulation runs");
+  check_time(start, "output start");
+  check_time(end, "output end");
+  if (!(interval > 0.0 && std::isfinite(interval)))
+    throw InvalidInput(invalid_value_message("output interval", interval, "> 0 (s), finite"));
+  const double count = std::floor((end - start) / interval + 1e-9);
+  if (count > kMostOutputs)
+    throw InvalidInput(invalid_value_message("output interval", interval,
+                                             ">= (end - start) / " + to_text(kMostOutputs) + " = " +
+                                                 to_text((end - start) / kMostOutputs) +
+                                                 " s (at most 1e9 outputs)"));
+  for (std::int64_t k = 0; k <= std::int64_t(count); ++k)
+    outputs_.push(start + double(k) * interval);
 }
 
 RunSummary Simulation::run(double start, double end) {
+  check_time(start, "start time");
+  check_time(end, "end time");
   if (!(end >= start))
     throw InvalidInput(
         invalid_value_message("end time", end, ">= the start time " + to_text(start)));
+  if (running_.exchange(true))
+    throw Error(
+        "Simulation::run: the simulation is already running (from another thread, or run again "
+        "by one of its observers); allowed: one run at a time");
+  struct Ended {
+    std::atomic<bool>& running;
+    ~Ended() { running = false; }
+  } ended{running_};
   if (problems_.impacts)
     for (Index j = 0; j < system_->interaction_count(); ++j)
       problems_.impacts->check_law(system_->interaction(j).law(), system_->interaction(j).name());

@@ -369,6 +369,7 @@ class PackingBuilder {
       throw InvalidInput(
           "no striker approaches its target: the packing is struck by nothing; allowed: a "
           "striker whose velocity points at the bead it targets");
+    chains::check_impact_scales(model_);
   }
 
   const PackingScene& scene_;

@@ -60,8 +60,12 @@ void check_strikers(const PackingScene& scene, const SceneChecks& checks) {
     const StrikerSpec& striker = scene.strikers[k];
     const std::string path = "strikers[" + std::to_string(k) + "]";
     check_pair(striker.velocity, path + ".velocity", "[vx, vy], finite and not zero (m/s)", checks);
-    if (std::hypot(striker.velocity[0], striker.velocity[1]) == 0.0)
-      checks.fail(path + ".velocity = [0, 0] is invalid; allowed: [vx, vy], not zero (m/s)");
+    const double speed = std::hypot(striker.velocity[0], striker.velocity[1]);
+    if (!(speed >= chains::kStrikerSpeed.lower))
+      checks.fail(path + ".velocity = [" + to_text(striker.velocity[0]) + ", " +
+                  to_text(striker.velocity[1]) +
+                  "] is invalid; allowed: [vx, vy] of speed >= 1e-100 m/s (below, m v^2 "
+                  "underflows double precision)");
     const std::size_t wanted = scene.lattice ? 2 : 1;
     if (striker.target.size() != wanted)
       checks.fail(path + ".target has " + std::to_string(striker.target.size()) +

@@ -550,11 +550,21 @@ void CompliantIntegrator::take_step() {
                       numerics::internal::DenseOutput::State& dydt,
                       double t) { evaluate(t, y.data(), dydt.data()); });
   const double t = s.dense.time();
-  if (s.dense.steps() > options_.max_steps)
+  if (s.dense.steps() > options_.max_steps) {
+    // beads that keep almost nothing of their approach stay in contact at nearly zero force and
+    // touch again and again: the usual cause, which the message names
+    const bool plastic =
+        std::any_of(laws_.begin(), laws_.end(),
+                    [](const numerics::ContactLaw& law) { return law.restitution < 0.01; });
     throw Error("compliant integrator: max_steps = " + std::to_string(options_.max_steps) +
-                " time steps taken by t = " + to_text(t) +
-                " s; the contacts' time scale is below what the tolerance and double precision "
-                "resolve (check the speeds and stiffnesses, or loosen the tolerance)");
+                " time steps taken by t = " + to_text(t) + " s; " +
+                (plastic ? "with restitution below 0.01 the beads stay touching at nearly zero "
+                           "force and collide again and again (the LZB method treats e -> 0 "
+                           "exactly)"
+                         : "the contacts' time scale is below what the tolerance and double "
+                           "precision resolve (check the speeds and stiffnesses, or loosen the "
+                           "tolerance)"));
+  }
   const numerics::internal::DenseOutput::State& now = s.dense.state();
   if (!std::all_of(now.begin(), now.end(), [](double x) { return std::isfinite(x); }))
     throw Error("compliant integrator: the state is not finite at t = " + to_text(t) +

@@ -42,7 +42,7 @@ def _observable(observable, contacts, bodies):
     if wrong is not None:
         raise ValueError(f"{'contacts' if per_body else 'bodies'} given for {observable}, which "
                          f"is per {'body' if per_body else 'contact'}; allowed: {name}")
-    index = None if chosen is None else np.asarray(chosen, dtype=int)
+    index = None if chosen is None else _indices(chosen, name)
 
     def measure(result):
         values = getattr(result, observable)
@@ -51,6 +51,21 @@ def _observable(observable, contacts, bodies):
                              f"{values.size}")
         return values if index is None else values[index]
     return measure
+
+
+def _indices(chosen, name):
+    """Whole, finite indices as an int array; fractions are refused, never truncated."""
+    try:
+        values = np.asarray(chosen)
+    except (TypeError, ValueError):
+        values = np.asarray([None])
+    whole = values.ndim == 1 and values.size > 0 and (
+        values.dtype.kind in "iu" or (values.dtype.kind == "f" and np.all(np.isfinite(values))
+                                      and np.all(values == np.floor(values))))
+    if not whole:
+        raise ValueError(f"{name} = {chosen!r} is not allowed; allowed: a non-empty list of "
+                         "whole indices")
+    return values.astype(int)
 
 
 def _bounds(scene, parameters):
@@ -65,9 +80,9 @@ def _bounds(scene, parameters):
         except (TypeError, ValueError):
             raise ValueError(f"parameters[{path!r}] = {bound!r} is not allowed; allowed: "
                              "(lower, upper)") from None
-        if not low < high:
+        if not (np.isfinite(low) and np.isfinite(high) and low < high):
             raise ValueError(f"parameters[{path!r}] = ({low}, {high}) is not allowed; allowed: "
-                             "lower < upper")
+                             "finite lower < upper")
         lower.append(low)
         upper.append(high)
     for point in ({p: l for p, l in zip(parameters, lower)},
@@ -80,18 +95,33 @@ def _bounds(scene, parameters):
 
 
 def _start(scene, parameters, lower, upper, start):
-    """The first guess: `start`, else the scene's value when inside the bounds, else the middle."""
+    """The first guess: `start` (refused outside the bounds), else the scene's value when inside
+    the bounds, else the middle."""
+    if start is not None:
+        if not isinstance(start, dict):
+            raise ValueError(f"start = {start!r} is not allowed; allowed: a dict from parameters "
+                             "to first values")
+        for path in start:
+            if path not in parameters:
+                raise ValueError(f"start[{path!r}] is not allowed; allowed: the parameters "
+                                 f"{', '.join(map(repr, parameters))}")
     guess = []
     for k, path in enumerate(parameters):
         if start is not None and path in start:
-            value = float(start[path])
+            try:
+                value = float(start[path])
+            except (TypeError, ValueError):
+                value = float("nan")
+            if not lower[k] <= value <= upper[k]:
+                raise ValueError(f"start[{path!r}] = {start[path]!r} is not allowed; allowed: "
+                                 f"within its bounds [{lower[k]}, {upper[k]}]")
         else:
             try:
                 value = float(get_path(scene, path))
             except (ValueError, TypeError, KeyError):
                 value = 0.5 * (lower[k] + upper[k])
-        if not lower[k] <= value <= upper[k]:
-            value = 0.5 * (lower[k] + upper[k])
+            if not lower[k] <= value <= upper[k]:
+                value = 0.5 * (lower[k] + upper[k])
         guess.append(value)
     return np.array(guess)
 
@@ -119,9 +149,13 @@ def fit(scene, parameters, observable, data, sigma=None, contacts=None, bodies=N
         np.asarray(sigma, dtype=float), data.shape).copy()
     if np.any(~np.isfinite(data)):
         raise ValueError("data holds values that are not finite; allowed: finite numbers")
-    if not np.all(weights > 0):
-        raise ValueError(f"sigma = {sigma!r} is not allowed; allowed: numbers > 0, one or one "
-                         f"per datum ({data.size})")
+    if not np.all(np.isfinite(weights) & (weights > 0)):
+        raise ValueError(f"sigma = {sigma!r} is not allowed; allowed: finite numbers > 0, one or "
+                         f"one per datum ({data.size})")
+    if not (isinstance(relative_step, (int, float)) and 0 < relative_step < 1):
+        raise ValueError(f"relative_step = {relative_step!r} is not allowed; allowed: a share "
+                         "0 < relative_step < 1 of each parameter's range")
+    first = _start(base, parameters, lower, upper, start)
     runs = 0
     cache = {}
 
@@ -152,10 +186,8 @@ def fit(scene, parameters, observable, data, sigma=None, contacts=None, bodies=N
         return np.column_stack([(r - at_x) / (p[k] - x[k])
                                 for k, (r, p) in enumerate(zip(around, shifted))])
 
-    solution = least_squares(lambda x: residuals_at([x])[0], _start(base, parameters, lower,
-                                                                     upper, start),
-                             jac=jacobian, bounds=(lower, upper), x_scale=upper - lower,
-                             **options)
+    solution = least_squares(lambda x: residuals_at([x])[0], first, jac=jacobian,
+                             bounds=(lower, upper), x_scale=upper - lower, **options)
     J = jacobian(solution.x)
     covariance = np.linalg.pinv(J.T @ J)
     if sigma is None:  # the scatter of the residuals stands for the unknown sigma

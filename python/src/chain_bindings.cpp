@@ -58,15 +58,19 @@ py::object read_scene(const py::object& path_argument) {
 // Parses and builds the scene without running it: the errors run_chain would raise first.
 void check_scene(const py::object& scene) { chains::build_chain_model(load_scene(scene)); }
 
-ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p) {
+ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p,
+                      double max_memory) {
   const chains::ChainScene scene = load_scene(scene_argument);
+  const chains::RunLimits limits = memory_limits(max_memory);
   chains::ChainRun run;
   nlohmann::ordered_json summary;
   {
     py::gil_scoped_release computing;
-    const chains::ChainModel model = chains::build_chain_model(scene);
-    run = chains::run_chain_scene(scene, model,
-                                  {.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"}});
+    const chains::ChainModel model = chains::build_chain_model(scene, limits);
+    chains::ChainRunOptions options;
+    options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
+    options.limits = limits;
+    run = chains::run_chain_scene(scene, model, options);
     summary = chains::run_summary(model, run);
   }
   const chains::ImpactOutcome& impact = run.impact;
@@ -91,19 +95,21 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
 }
 
 py::object converge(const py::object& scene_argument, std::vector<double> tolerance,
-                    std::optional<double> first, int rows) {
+                    std::optional<double> first, int rows, double max_memory) {
   const chains::ChainScene scene = load_scene(scene_argument);
+  const chains::RunLimits limits = memory_limits(max_memory);
   nlohmann::ordered_json study;
   {
     py::gil_scoped_release computing;
-    const chains::ChainModel model = chains::build_chain_model(scene);
+    const chains::ChainModel model = chains::build_chain_model(scene, limits);
     study = chains::study_chain_convergence(scene, model,
                                             {.tolerance = std::move(tolerance),
                                              .first = first,
                                              .max_rows = rows,
                                              .tolerance_name = "tolerance",
                                              .first_name = "first",
-                                             .rows_name = "rows"});
+                                             .rows_name = "rows",
+                                             .limits = limits});
   }
   return from_json(study);
 }
@@ -114,28 +120,49 @@ chains::Material material(const py::dict& fields, const std::string& name) {
                                                 {.name = name});
 }
 
+// A radius (m) checked as a scene's radii are.
+double radius(double value, const std::string& name) {
+  fields::Validator("", "").check(name, value, positive("m"));
+  return value;
+}
+
+// The helpers' results are formulas of checked values, and can still leave double precision.
+double finite_result(double value, const std::string& what) {
+  if (!std::isfinite(value) || value == 0.0)
+    throw InvalidInput(what + " = " + to_text(value) +
+                       " leaves double precision; allowed: radii and moduli whose products stay "
+                       "within it");
+  return value;
+}
+
 }  // namespace
 
 void bind_chains(py::module_& module) {
   module.def(
       "bead_mass",
-      [](double radius, const py::dict& of) {
-        return chains::bead_mass(radius, material(of, "material"));
+      [](double r, const py::dict& of) {
+        return finite_result(chains::bead_mass(radius(r, "radius"), material(of, "material")),
+                             "bead_mass");
       },
       py::arg("radius"), py::arg("material"),
       "kg: (4/3) pi R^3 rho; material = {'density': kg/m^3, 'young': Pa, 'poisson': nu}");
   module.def(
       "hertz_stiffness",
       [](double radius_a, const py::dict& a, double radius_b, const py::dict& b) {
-        return chains::hertz_stiffness(radius_a, material(a, "material_a"), radius_b,
-                                       material(b, "material_b"));
+        return finite_result(
+            chains::hertz_stiffness(radius(radius_a, "radius_a"), material(a, "material_a"),
+                                    radius(radius_b, "radius_b"), material(b, "material_b")),
+            "hertz_stiffness");
       },
       py::arg("radius_a"), py::arg("material_a"), py::arg("radius_b"), py::arg("material_b"),
       "N/m^1.5: K = (4/3) sqrt(R*) E* of two spheres (Johnson 1985, section 4.2)");
   module.def(
       "hertz_stiffness_wall",
-      [](double radius, const py::dict& bead, const py::dict& wall) {
-        return chains::hertz_stiffness_wall(radius, material(bead, "bead"), material(wall, "wall"));
+      [](double r, const py::dict& bead, const py::dict& wall) {
+        return finite_result(
+            chains::hertz_stiffness_wall(radius(r, "radius"), material(bead, "bead"),
+                                         material(wall, "wall")),
+            "hertz_stiffness_wall");
       },
       py::arg("radius"), py::arg("bead"), py::arg("wall"),
       "N/m^1.5: the same for a sphere against a flat rigid wall (R* = R)");
@@ -196,16 +223,17 @@ void bind_chains(py::module_& module) {
             return r;
           }));
   module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
-             py::arg("delta_p") = py::none(),
+             py::arg("delta_p") = py::none(), py::arg("max_memory") = chains::RunLimits{}.memory_gb,
              "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
-             "the method it chooses; delta_p (N s) overrides the scene's impulse step.");
+             "the method it chooses; delta_p (N s) overrides the scene's impulse step; a run "
+             "that would hold more than max_memory GB is refused before it starts.");
   module.def("read_scene", &read_scene, py::arg("path"),
              "a scene file (JSON, // comments allowed) as a dict, checked like run_chain()'s");
   module.def("check_scene", &check_scene, py::arg("scene"),
              "raises the ValueError run_chain(scene) would raise for bad input, without running");
   module.def("converge", &converge, py::arg("scene"), py::kw_only(),
              py::arg("tolerance") = std::vector<double>{}, py::arg("first") = py::none(),
-             py::arg("rows") = 12,
+             py::arg("rows") = 12, py::arg("max_memory") = chains::RunLimits{}.memory_gb,
              "The convergence study of `mimpact converge`: the adaptive integrator's tolerance "
              "t, t/10, ... or delta_p h, h/2, ... until the post-impact velocities (and peak "
              "forces) change by at most tolerance = [eps+, eps]; returns its rows as a dict.");

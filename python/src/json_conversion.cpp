@@ -9,9 +9,6 @@ namespace py = pybind11;
 
 namespace mimpact::python {
 
-namespace {
-
-// repr(value) cut to 80 characters; a repr that fails is named by its type
 std::string short_repr(const py::handle& value) {
   std::string text;
   try {
@@ -23,6 +20,8 @@ std::string short_repr(const py::handle& value) {
              ? text
              : text.substr(0, 80) + "... (" + std::to_string(text.size()) + " characters)";
 }
+
+namespace {
 
 // A Python int as JSON: an integer when it fits 64 bits, else the nearest double, refused
 // beyond double precision

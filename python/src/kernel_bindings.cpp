@@ -39,13 +39,37 @@ kernel::Parameters parameters(const py::object& options, const std::string& wher
   return kernel::Parameters(json);
 }
 
+// The result of a Python callable as a float64 array of at least `dimensions` dimensions, or
+// InvalidInput naming the callable and what it returned.
+template <class Matrix>
+Matrix numbers_of(const py::object& value, int dimensions, const std::string& what,
+                  const std::string& allowed) {
+  const py::module_ numpy = py::module_::import("numpy");
+  Matrix result;
+  try {
+    result = py::cast<Matrix>(numpy.attr(dimensions == 1 ? "atleast_1d" : "atleast_2d")(
+        numpy.attr("asarray")(value, "float64")));
+  } catch (const py::error_already_set&) {
+    throw InvalidInput(what + " returned " + short_repr(value) + "; allowed: " + allowed);
+  } catch (const py::cast_error&) {
+    throw InvalidInput(what + " returned " + short_repr(value) + "; allowed: " + allowed);
+  }
+  // None reads as NaN: the run stops here rather than carry it
+  if (!result.allFinite())
+    throw InvalidInput(what + " returned " + short_repr(value) +
+                       ", not finite; allowed: " + allowed);
+  return result;
+}
+
 // The result of a Python callable as a vector of `size` values, or an error naming the callable.
 VectorXd vector_result(const py::object& value, Index size, const std::string& what) {
-  const VectorXd result = py::cast<VectorXd>(py::module_::import("numpy").attr("atleast_1d")(
-      py::module_::import("numpy").attr("asarray")(value, "float64")));
+  const std::string allowed = std::to_string(size) +
+                              (size == 1 ? " finite number" : " finite numbers") +
+                              " (the system's coordinates)";
+  const VectorXd result = numbers_of<VectorXd>(value, 1, what, allowed);
   if (result.size() != size)
     throw InvalidInput(what + " returned " + std::to_string(result.size()) +
-                       " values; allowed: " + std::to_string(size) + " (the system's coordinates)");
+                       " values; allowed: " + allowed);
   return result;
 }
 
@@ -60,9 +84,10 @@ std::shared_ptr<kernel::LagrangianDS> lagrangian_ds(VectorXd q, VectorXd v, py::
         std::move(q), std::move(v),
         [mass, n, name](const VectorXd& position, MatrixXd& out) {
           py::gil_scoped_acquire python;
-          const MatrixXd matrix =
-              py::cast<MatrixXd>(py::module_::import("numpy").attr("atleast_2d")(
-                  py::module_::import("numpy").attr("asarray")(mass(position), "float64")));
+          const std::string what = "system '" + name + "': mass(q)";
+          const MatrixXd matrix = numbers_of<MatrixXd>(
+              mass(position), 2, what,
+              "a finite " + std::to_string(n) + " x " + std::to_string(n) + " matrix");
           if (matrix.rows() != n || matrix.cols() != n)
             throw InvalidInput(
                 "system '" + name + "': mass(q) returned a " + std::to_string(matrix.rows()) +
@@ -72,8 +97,8 @@ std::shared_ptr<kernel::LagrangianDS> lagrangian_ds(VectorXd q, VectorXd v, py::
         },
         name);
   } else {
-    const MatrixXd matrix = py::cast<MatrixXd>(py::module_::import("numpy").attr("atleast_2d")(
-        py::module_::import("numpy").attr("asarray")(mass, "float64")));
+    const MatrixXd matrix = numbers_of<MatrixXd>(mass, 2, "system '" + name + "': mass",
+                                                 "a finite matrix or a callable");
     system = std::make_shared<kernel::LagrangianDS>(std::move(q), std::move(v), matrix, name);
   }
   if (!internal_force.is_none())
@@ -92,42 +117,39 @@ std::shared_ptr<kernel::LagrangianDS> lagrangian_ds(VectorXd q, VectorXd v, py::
 }
 
 // An observer of Python callables, each optional: on_step returns None to go on, or a string,
-// the reason to end the run.
+// the reason to end the run. Each callable receives the Python Simulation (which a callable may
+// keep: it keeps the simulation alive) and a copy of the report.
 class PythonObserver : public kernel::SimulationObserver {
  public:
   py::object on_start_, on_step_, on_event_, on_impact_, on_output_, on_end_;
+  py::handle owner_;  // the Python Simulation that runs; set by its run()
 
-  void on_start(const kernel::Simulation& simulation) override { call(on_start_, simulation); }
-  kernel::EventStatus on_step(const kernel::Simulation& simulation,
-                              const kernel::StepReport& step) override {
+  void on_start(const kernel::Simulation&) override { call(on_start_); }
+  kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
     if (on_step_.is_none()) return kernel::EventStatus::proceed();
     py::gil_scoped_acquire python;
-    const py::object answer = on_step_(py::cast(simulation, py::return_value_policy::reference),
-                                       py::cast(step, py::return_value_policy::reference));
+    const py::object answer = on_step_(owner_, py::cast(step, py::return_value_policy::copy));
     if (answer.is_none()) return kernel::EventStatus::proceed();
     if (!py::isinstance<py::str>(answer))
-      throw InvalidInput("on_step returned " + py::repr(answer).cast<std::string>() +
+      throw InvalidInput("on_step returned " + short_repr(answer) +
                          "; allowed: None to go on, or a string saying why the run ends");
     return kernel::EventStatus::terminate(answer.cast<std::string>());
   }
-  void on_event(const kernel::Simulation& simulation, const kernel::StepReport& step) override {
-    call(on_event_, simulation, step);
+  void on_event(const kernel::Simulation&, const kernel::StepReport& step) override {
+    call(on_event_, step);
   }
-  void on_impact(const kernel::Simulation& simulation,
-                 const kernel::ImpactReport& report) override {
-    call(on_impact_, simulation, report);
+  void on_impact(const kernel::Simulation&, const kernel::ImpactReport& report) override {
+    call(on_impact_, report);
   }
-  void on_output(const kernel::Simulation& simulation) override { call(on_output_, simulation); }
-  void on_end(const kernel::Simulation& simulation) override { call(on_end_, simulation); }
+  void on_output(const kernel::Simulation&) override { call(on_output_); }
+  void on_end(const kernel::Simulation&) override { call(on_end_); }
 
  private:
   template <class... Reports>
-  void call(const py::object& callable, const kernel::Simulation& simulation,
-            const Reports&... reports) {
+  void call(const py::object& callable, const Reports&... reports) {
     if (callable.is_none()) return;
     py::gil_scoped_acquire python;
-    callable(py::cast(simulation, py::return_value_policy::reference),
-             py::cast(reports, py::return_value_policy::reference)...);
+    callable(owner_, py::cast(reports, py::return_value_policy::copy)...);
   }
 };
 
@@ -136,6 +158,14 @@ struct PythonSimulation {
   std::unique_ptr<kernel::Simulation> simulation;
   std::vector<std::unique_ptr<PythonObserver>> observers;
 };
+
+// Runs with the GIL released; the observers hand `self` to their callables.
+kernel::RunSummary run_simulation(const py::object& self, double start, double end) {
+  PythonSimulation& simulation = self.cast<PythonSimulation&>();
+  for (const auto& observer : simulation.observers) observer->owner_ = self;
+  py::gil_scoped_release computing;
+  return simulation.simulation->run(start, end);
+}
 
 PythonSimulation make_simulation(std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                  const std::string& integrator, const py::object& impacts,
@@ -178,8 +208,11 @@ void bind_kernel(py::module_& module) {
       module, "DynamicalSystem", "A body of the system: its coordinates q and velocities v")
       .def_property_readonly("name", &kernel::DynamicalSystem::name)
       .def_property_readonly("dimension", &kernel::DynamicalSystem::dimension)
-      .def_property_readonly("position", &kernel::DynamicalSystem::position)
-      .def_property_readonly("velocity", &kernel::DynamicalSystem::velocity)
+      // copies: the run changes the state after they are read
+      .def_property_readonly(
+          "position", [](const kernel::DynamicalSystem& s) { return VectorXd(s.position()); })
+      .def_property_readonly(
+          "velocity", [](const kernel::DynamicalSystem& s) { return VectorXd(s.velocity()); })
       .def("set_state", &kernel::DynamicalSystem::set_state, py::arg("position"),
            py::arg("velocity"));
 
@@ -294,16 +327,6 @@ void bind_kernel(py::module_& module) {
       .def_readonly("impacts", &kernel::RunSummary::impacts)
       .def_readonly("wall_time", &kernel::RunSummary::wall_time);
 
-  // what observers receive: the simulation's time and system, read-only
-  py::class_<kernel::Simulation>(module, "SimulationState")
-      .def_property_readonly("time", &kernel::Simulation::time)
-      .def_property_readonly(
-          "system",
-          [](const kernel::Simulation& simulation) -> const kernel::NonSmoothDynamicalSystem& {
-            return simulation.system();
-          },
-          py::return_value_policy::reference_internal);
-
   py::class_<PythonSimulation>(
       module, "Simulation",
       "the generic simulation loop over a system, its integrator and problems chosen by registry "
@@ -333,19 +356,17 @@ void bind_kernel(py::module_& module) {
           py::arg("on_start") = py::none(), py::arg("on_end") = py::none(),
           "callables (simulation, report): on_step(simulation, step) returns None to go on or a "
           "string to end the run; on_impact(simulation, impact); on_event(simulation, step); "
-          "on_output(simulation) at scheduled times; on_start, on_end(simulation)")
+          "on_output(simulation) at scheduled times; on_start, on_end(simulation). They receive "
+          "this Simulation and copies of the reports, which they may keep")
       .def(
           "schedule_outputs",
           [](PythonSimulation& self, double start, double interval, double end) {
             self.simulation->schedule_outputs(start, interval, end);
           },
           py::arg("start"), py::arg("interval"), py::arg("end"))
-      .def(
-          "run",
-          [](PythonSimulation& self, double start, double end) {
-            return self.simulation->run(start, end);
-          },
-          py::arg("start"), py::arg("end"), py::call_guard<py::gil_scoped_release>())
+      .def("run", &run_simulation, py::arg("start"), py::arg("end"),
+           "runs from start to end (s, finite); a second run while one goes on, from any thread, "
+           "raises RuntimeError")
       .def_property_readonly("time",
                              [](const PythonSimulation& self) { return self.simulation->time(); })
       .def_property_readonly(

@@ -65,16 +65,22 @@ py::dict frames_dict(const chains::Frames& frames, Eigen::Index bodies) {
   return dict;
 }
 
-PackingResult run_packing(const py::object& scene_argument, std::optional<double> delta_p) {
-  const packings::PackingScene scene = load_scene(scene_argument);
+PackingResult run_packing(const py::object& scene_argument, std::optional<double> delta_p,
+                          const py::object& data_dir, double max_memory) {
+  packings::PackingScene scene = load_scene(scene_argument);
+  if (!data_dir.is_none())
+    scene.directory = py::module_::import("os").attr("fspath")(data_dir).cast<std::string>();
+  const chains::RunLimits limits = memory_limits(max_memory);
   packings::PackingModel model;
   packings::PackingRun run;
   nlohmann::ordered_json summary;
   {
     py::gil_scoped_release computing;
-    model = packings::build_packing_model(scene);
-    run = packings::run_packing_scene(scene, model,
-                                      {.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"}});
+    model = packings::build_packing_model(scene, limits);
+    packings::PackingRunOptions options;
+    options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
+    options.limits = limits;
+    run = packings::run_packing_scene(scene, model, options);
     summary = packings::packing_summary(scene, model, run);
   }
   const chains::ImpactOutcome& impact = run.impact;
@@ -143,10 +149,13 @@ void bind_packings(py::module_& module) {
                std::to_string(result.max_forces.size()) + " contacts>";
       });
   module.def("run_packing", &run_packing, py::arg("scene"), py::kw_only(),
-             py::arg("delta_p") = py::none(),
-             "Runs a planar packing scene (a path, or a dict with its keys; bead lists are found "
-             "from the scene file, or from the working directory for a dict) as `mimpact "
-             "packing` does; delta_p (N s) overrides the scene's impulse step.");
+             py::arg("delta_p") = py::none(), py::arg("data_dir") = py::none(),
+             py::arg("max_memory") = chains::RunLimits{}.memory_gb,
+             "Runs a planar packing scene (a path, or a dict with its keys) as `mimpact packing` "
+             "does; delta_p (N s) overrides the scene's impulse step; bead lists are read only "
+             "inside data_dir (by default the scene file's directory, or the working directory "
+             "for a dict); a run that would hold more than max_memory GB is refused before it "
+             "starts.");
 }
 
 }  // namespace mimpact::python

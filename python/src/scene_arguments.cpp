@@ -7,6 +7,12 @@ namespace py = pybind11;
 
 namespace mimpact::python {
 
+chains::RunLimits memory_limits(double max_memory) {
+  const chains::RunLimits limits{.memory_gb = max_memory, .memory_option = "max_memory="};
+  limits.check();
+  return limits;
+}
+
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns) {
   Eigen::MatrixXd matrix(Eigen::Index(rows.size()), Eigen::Index(columns));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "json_conversion.hpp"
+#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/chains/time_series.hpp"
 #include "mimpact/common/error.hpp"
 
@@ -25,6 +26,9 @@ auto load_scene_argument(const pybind11::object& scene, Read&& read, Load&& load
   throw InvalidInput("scene = " + py::repr(scene).cast<std::string>() +
                      " is not allowed; allowed: a scene file's path or a dict with its keys");
 }
+
+// The limits of a run from Python's max_memory= (GB), checked.
+chains::RunLimits memory_limits(double max_memory);
 
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns);

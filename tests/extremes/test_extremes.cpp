@@ -220,6 +220,24 @@ TEST(Extremes, RestitutionAndExponent) {
       }
 }
 
+// A restitution below 2^-27 gives back less than half an ulp of the compression work: the
+// integrators release it at once, as e = 0, to the last bit (e = 1e-100 ran past a minute,
+// 1e-300 overflowed 1/e^2; issue 22).
+TEST(Extremes, NegligibleRestitutionIsZero) {
+  for (const Integration& how : {Integration{.share = 1e-4}, adaptive(1e-8)}) {
+    const Outcome zero = expect_sound(struck_chain(20, 1.0, law(1.5, 0.0)), how, "e = 0");
+    for (double e : {7e-9, 1e-100, 1e-300, 5e-324}) {
+      const Outcome tiny = expect_sound(struck_chain(20, 1.0, law(1.5, e)), how, name("e", e));
+      EXPECT_EQ(tiny.velocity, zero.velocity) << e;
+      EXPECT_EQ(tiny.result.steps, zero.result.steps) << e;
+    }
+  }
+  // just above, the energy given back is resolved: the striker rebounds by e times its speed
+  const Line pair = struck_chain(1, 1.0, law(1.5, 1e-8));
+  EXPECT_NEAR(expect_sound(pair, 1e-3, "two bodies, e = 1e-8", true, true).result.velocity(0), 1e-8,
+              1e-12);
+}
+
 // Two bodies: the post-impact relative velocity is -e u- exactly (a lone contact is exact at
 // any delta_p), down to e = 1e-3.
 TEST(Extremes, TwoBodiesRestoreTheirRestitution) {

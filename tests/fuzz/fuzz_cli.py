@@ -249,8 +249,9 @@ def check_csv(path):
 
 
 class Runner:
-    def __init__(self, mimpact, timeout, memory_mb, sanitized):
+    def __init__(self, mimpact, timeout, memory_mb, sanitized, slowdown=1.0):
         self.mimpact, self.timeout, self.memory_mb = mimpact, timeout, memory_mb
+        self.slowdown = slowdown
         self.environment = dict(os.environ)
         if sanitized:  # ASan reserves terabytes of address space: limit its heap instead
             self.environment["ASAN_OPTIONS"] = (
@@ -270,7 +271,7 @@ class Runner:
         full = [self.mimpact, command] + arguments
         if out and command != "lcp":
             full += ["--out", str(out_dir), "--quiet"]
-        limit = max_seconds if max_seconds is not None else self.timeout
+        limit = max_seconds * self.slowdown if max_seconds is not None else self.timeout
         start = time.monotonic()
         try:
             done = subprocess.run(full, cwd=work, capture_output=True, timeout=limit + 5,
@@ -444,11 +445,17 @@ def main():
     parser.add_argument("--memory-mb", type=int, default=3000, help="memory a run may take")
     parser.add_argument("--sanitized", action="store_true",
                         help="the executable is built with ASan+UBSan")
+    parser.add_argument("--slowdown", type=float, default=1.0,
+                        help="how much slower the executable runs (the cases' limits grow)")
     parser.add_argument("--skip-cases", action="store_true", help="random inputs only")
     parser.add_argument("--failures", default=str(SOURCE / "build" / "fuzz-failures"))
     arguments = parser.parse_args()
     mimpact = str(Path(arguments.mimpact).resolve())
-    runner = Runner(mimpact, arguments.timeout, arguments.memory_mb, arguments.sanitized)
+    runner = Runner(mimpact, arguments.timeout, arguments.memory_mb, arguments.sanitized,
+                    arguments.slowdown)
+    # a random input runs within 1 GB where the command can be told so (--max-memory)
+    limits = ["--max-memory", "1"] if "max-memory" in subprocess.run(
+        [mimpact, "chain", "--help"], capture_output=True, text=True).stdout else []
     failures_dir = Path(arguments.failures)
     counts = {}
 
@@ -485,6 +492,8 @@ def main():
         random_count += 1
         total += 1
         command, files, command_arguments = random_input(rng, seeds)
+        if command != "lcp":
+            command_arguments = command_arguments + limits
         existing = rng.random() < 0.1
         with tempfile.TemporaryDirectory(prefix="mimpact-fuzz-") as scratch:
             work = Path(scratch)

@@ -52,6 +52,11 @@ double largest_momentum(const ContactModel& model);
 // relative_delta_p is a share of (plugins::LzbImpactOptions).
 double contact_impulse(const ContactModel& model);
 
+// Throws InvalidInput when an approaching contact's natural energy, m u^2 / 2 with m = 1 / H_jj,
+// leaves [1e-250, 1e250] J: the integrators' tolerances are this energy times factors down to
+// 1e-44, which must stay normal doubles (a packing of beads of density 1e-300 never ended).
+void check_impact_scales(const ContactModel& model);
+
 // Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
 // resolve the impact: finite, below the natural impulse m V (a coarser step resolves no
 // approach, so the strikers would pass through their targets), and not so fine that the

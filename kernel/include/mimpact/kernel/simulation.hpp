@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <queue>
@@ -79,15 +80,21 @@ class Simulation {
              std::unique_ptr<OneStepIntegrator> integrator, SimulationProblems problems = {},
              SimulationOptions options = {});
 
-  void add_observer(SimulationObserver& observer) { observers_.push_back(&observer); }
+  // These three throw mimpact::Error while the simulation runs (from an observer, or from
+  // another thread), and InvalidInput for times that are not finite.
+  void add_observer(SimulationObserver& observer);
   // Output times: on_output is called when the simulation reaches them.
-  void schedule_output(double time) { outputs_.push(time); }
+  void schedule_output(double time);
+  // start, start + interval, ... up to end: at most kMostOutputs of them.
   void schedule_outputs(double start, double interval, double end);
+  static constexpr double kMostOutputs = 1e9;
 
   // Runs from the systems' current state at time `start` to `end`, or until an observer
-  // terminates it. Throws InvalidInput for a model the problems cannot handle (a law, a
-  // mass, an initial interpenetration).
+  // terminates it. Throws InvalidInput for times that are not finite or in order and for a model
+  // the problems cannot handle (a law, a mass, an initial interpenetration); mimpact::Error
+  // while it is already running: one run at a time, whatever the thread.
   RunSummary run(double start, double end);
+  bool running() const { return running_.load(); }
 
   double time() const { return time_; }
   const NonSmoothDynamicalSystem& system() const { return *system_; }
@@ -106,6 +113,7 @@ class Simulation {
   std::vector<SimulationObserver*> observers_;
   std::priority_queue<double, std::vector<double>, std::greater<double>> outputs_;
   double time_ = 0.0;
+  std::atomic<bool> running_ = false;
 };
 
 }  // namespace mimpact::kernel
