@@ -2,12 +2,12 @@
 # The fuzzers of tests/fuzz (docs/robustness.md): the cases of tests/fuzz/cases.json and seeded
 # random inputs through the command line (the Release build, and the ASan + UBSan one when it is
 # built) and through the Python module. Fails on any finding; the failing inputs are kept in
-# build/fuzz-failures. FUZZ_SECONDS bounds each random run (30 s by default, as in CI), FUZZ_SEED
+# build/fuzz-failures. FUZZ_SECONDS bounds each random run (20 s by default, as in CI), FUZZ_SEED
 # seeds it (1). A longer run, with other inputs:
 #   FUZZ_SECONDS=3600 FUZZ_SEED=$RANDOM bash scripts/fuzz.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${FUZZ_SECONDS:-30}
+seconds=${FUZZ_SECONDS:-20}
 seed=${FUZZ_SEED:-1}
 python=/usr/bin/python3
 

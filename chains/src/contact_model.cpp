@@ -85,11 +85,11 @@ void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_s
   if (!(largest / delta_p <= double(max_steps)))
     throw InvalidInput(invalid_value_message(
         field, delta_p,
-        ">= P / max_steps = " + to_text(largest / double(max_steps)) +
-            " N s, P = " + to_text(largest) +
-            " N s the largest momentum: the impact takes at least P / delta_p impulse steps, "
-            "and impact.max_steps = " +
-            std::to_string(max_steps) + " (raise it to allow more)"));
+        ">= P / max_steps = " + to_text(largest / double(max_steps)) + " N s, P = " +
+            to_text(largest) + " N s the largest momentum: the impact would take at least P / " +
+            "delta_p = " + rounded_text(largest / delta_p) +
+            " impulse steps, more than impact.max_steps = " + std::to_string(max_steps) +
+            " (raise it to allow more)"));
 }
 
 }  // namespace mimpact::chains

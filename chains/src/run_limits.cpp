@@ -10,21 +10,9 @@ namespace mimpact::chains {
 
 namespace {
 
-// "3.04e+295"
-std::string count_text(double count) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", count);
-  return text;
-}
-
 // "1.2 GB", "850 MB"
 std::string size_text(double bytes) {
-  char text[32];
-  if (bytes >= 1e9)
-    std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
-  else
-    std::snprintf(text, sizeof text, "%.3g MB", bytes / 1e6);
-  return text;
+  return bytes >= 1e9 ? rounded_text(bytes / 1e9) + " GB" : rounded_text(bytes / 1e6) + " MB";
 }
 
 }  // namespace
@@ -71,8 +59,8 @@ RecordingBudget::RecordingBudget(double sample_bytes, double frame_bytes, const 
 
 void RecordingBudget::check_estimate(double samples, double frames) const {
   check_memory(samples * sample_bytes_ + frames * frame_bytes_,
-               "the recording (" + fields_ + ": at least " + count_text(samples) + " samples" +
-                   (frames > 0.0 ? ", " + count_text(frames) + " frames" : "") + ")",
+               "the recording (" + fields_ + ": at least " + rounded_text(samples) + " samples" +
+                   (frames > 0.0 ? ", " + rounded_text(frames) + " frames" : "") + ")",
                limits_);
 }
 

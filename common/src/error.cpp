@@ -1,6 +1,7 @@
 #include "mimpact/common/error.hpp"
 
 #include <charconv>
+#include <cstdio>
 
 namespace mimpact {
 
@@ -8,6 +9,12 @@ std::string to_text(double value) {
   char number[32];
   const auto end = std::to_chars(number, number + sizeof number, value).ptr;
   return std::string(number, end);
+}
+
+std::string rounded_text(double value) {
+  char number[32];
+  std::snprintf(number, sizeof number, "%.3g", value);
+  return number;
 }
 
 std::string invalid_value_message(const std::string& field, double value,

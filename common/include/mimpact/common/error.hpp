@@ -22,6 +22,9 @@ class InvalidInput : public Error {
 // 1.0000000000000001e-09.
 std::string to_text(double value);
 
+// The value to three significant digits, for estimates: "3.26e+13", "0.5".
+std::string rounded_text(double value);
+
 // Formats "FIELD = VALUE is invalid; allowed: ALLOWED", the one shape of every input error.
 std::string invalid_value_message(const std::string& field, double value,
                                   const std::string& allowed);
