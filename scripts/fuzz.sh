@@ -15,9 +15,10 @@ echo "== fuzz: the command line, Release (seed $seed, ${seconds} s)"
 "$python" tests/fuzz/fuzz_cli.py --mimpact build/release/bin/mimpact --seconds "$seconds" \
   --seed "$seed"
 if [ -x build/sanitize/bin/mimpact ]; then
-  echo "== fuzz: the command line, ASan + UBSan (seed $seed, ${seconds} s)"
+  # other inputs than the Release run's (seed + 1): the two runs cover more together
+  echo "== fuzz: the command line, ASan + UBSan (seed $((seed + 1)), ${seconds} s)"
   "$python" tests/fuzz/fuzz_cli.py --mimpact build/sanitize/bin/mimpact --sanitized \
-    --seconds "$seconds" --seed "$seed" --timeout 60 --memory-mb 6000 --slowdown 4
+    --seconds "$seconds" --seed "$((seed + 1))" --timeout 60 --memory-mb 6000 --slowdown 4
 fi
 echo "== fuzz: the Python module (seed $seed, ${seconds} s)"
 PYTHONPATH=build/release/python "$python" tests/fuzz/fuzz_python.py --seconds "$seconds" \

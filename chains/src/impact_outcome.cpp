@@ -228,7 +228,8 @@ CompliantRun simulate_compliant(const ContactModel& model,
                         // the positions to the tolerance's share of the impact's overlap
                         {"absolute_tolerance", 1e-2 * tolerance * overlap},
                         {"overlap_resolution", resolution},
-                        {"frozen_gaps", spec.gaps == Gaps::frozen}}),
+                        {"frozen_gaps", spec.gaps == Gaps::frozen},
+                        {"max_steps", spec.max_steps}}),
       {}, simulation_options);
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;

@@ -557,7 +557,7 @@ void CompliantIntegrator::take_step() {
         std::any_of(laws_.begin(), laws_.end(),
                     [](const numerics::ContactLaw& law) { return law.restitution < 0.01; });
     throw Error("compliant integrator: max_steps = " + std::to_string(options_.max_steps) +
-                " time steps taken by t = " + to_text(t) + " s; " +
+                " time steps taken by t = " + to_text(t) + " s (compliant.max_steps in a scene); " +
                 (plastic ? "with restitution below 0.01 the beads stay touching at nearly zero "
                            "force and collide again and again (the LZB method treats e -> 0 "
                            "exactly)"

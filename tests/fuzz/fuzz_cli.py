@@ -492,6 +492,7 @@ def main():
              "lcp": sorted((SOURCE / "tests" / "data" / "lcp").glob("lcp_*.dat"))}
     start = time.monotonic()
     random_count = 0
+    slowest = []  # (seconds, input): where the time went
     while (random_count < arguments.cases if arguments.cases else
            time.monotonic() - start < arguments.seconds):
         random_count += 1
@@ -503,16 +504,21 @@ def main():
         with tempfile.TemporaryDirectory(prefix="mimpact-fuzz-") as scratch:
             work = Path(scratch)
             write_inputs(work, files)
+            began = time.monotonic()
             try:
                 runner.run(work, command, command_arguments, existing_output=existing)
             except Failure as failure:
                 record("input", f"seed{arguments.seed}-{random_count}", str(failure), files,
                        ["mimpact", command] + command_arguments)
+            slowest = sorted(slowest + [(time.monotonic() - began, random_count)])[-3:]
     failed = sum(counts.values())
     print(f"{random_count} random inputs (seed {arguments.seed}) in "
           f"{time.monotonic() - start:.0f} s; {total} in all, {failed} failed")
     for kind, count in sorted(counts.items()):
         print(f"  {count:5d}  {kind}")
+    if slowest:
+        print("slowest inputs: " + ", ".join(f"seed{arguments.seed}-{n} {t:.1f} s"
+                                              for t, n in reversed(slowest)))
     return 1 if failed else 0
 
 

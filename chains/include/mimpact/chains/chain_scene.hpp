@@ -118,6 +118,7 @@ struct CompliantSpec {
   double tolerance = 1e-10;        // relative error control of the integration
   std::optional<double> end_time;  // s; required with a precompression
   Gaps gaps = Gaps::open;
+  std::int64_t max_steps = 10'000'000;  // time steps before the run is abandoned
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -126,6 +127,7 @@ struct CompliantSpec {
           within(1e-14, 1.0, {}, false, true).described("1e-14 <= tolerance < 1"));
     field("end_time", self.end_time, positive("s"));
     field("gaps", self.gaps);
+    field("max_steps", self.max_steps, at_least(1, "time steps"));
   }
 };
 
