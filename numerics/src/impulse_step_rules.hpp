@@ -38,6 +38,20 @@ struct DenseDelassus {
   }
 };
 
+// Calls run(columns) with H's columns: a dense copy (in `dense`, a buffer reused from one impact
+// to the next) for impacts among at most `dense_up_to` contacts, whose columns are then read
+// without indices; the compressed sparse columns otherwise.
+template <class Run>
+void with_columns(const Eigen::SparseMatrix<double>& H, Eigen::Index dense_up_to,
+                  Eigen::MatrixXd& dense, Run&& run) {
+  if (H.rows() <= dense_up_to) {
+    dense = H;
+    run(DenseDelassus{dense});
+  } else {
+    run(SparseDelassus(H));
+  }
+}
+
 // x^p for x > 0, through exp2 and log2: a few ulp from std::pow and a quarter cheaper,
 // which matters because the step loops evaluate one power per contact updated.
 inline double power_of(double x, double p) { return std::exp2(p * std::log2(x)); }

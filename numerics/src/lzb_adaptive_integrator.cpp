@@ -5,7 +5,6 @@
 #include <cmath>
 #include <string>
 
-#include "impact_input.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/numerics/internal/dense_output.hpp"
 #include "mimpact/numerics/internal/event_scan.hpp"
@@ -56,15 +55,15 @@ class LzbAdaptiveIntegrator::Impact {
   explicit Impact(double tolerance)
       : ode_(kLocalErrorShare * tolerance, kLocalErrorShare * tolerance) {}
 
-  LzbResult run(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& diagonal,
-                const Eigen::VectorXd& u_minus, std::span<const ContactLaw> laws,
-                const LzbAdaptiveOptions& options, ImpactObserver* observer);
+  void run(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& diagonal,
+           const Eigen::VectorXd& u_minus, const LawTable& laws, const LzbAdaptiveOptions& options,
+           ImpactSampler& sampler, ImpactObserver* observer, LzbResult& result);
 
  private:
   using State = internal::DenseOutput::State;
 
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
-               std::span<const ContactLaw> laws, const LzbAdaptiveOptions& options);
+               const LawTable& laws, const LzbAdaptiveOptions& options);
   void begin_segment();
   // u of every member for the ODE state y (the increments of P applied through H's columns)
   void member_velocities(const State& y, std::vector<double>& velocity) const;
@@ -82,7 +81,7 @@ class LzbAdaptiveIntegrator::Impact {
   bool settled(const State& y);
   void sample_until(double t, ImpactObserver& observer);
   void notify(double t, const State* y, ImpactObserver& observer);
-  LzbResult finish(const Eigen::VectorXd& u_minus, double t);
+  void finish(double t, LzbResult& result);
 
   double delta_of(std::size_t member, const State& y) const {
     return std::max(y[member], 0.0) * delta_scale_[members_[member]];
@@ -119,12 +118,11 @@ class LzbAdaptiveIntegrator::Impact {
   std::vector<double> accounted_impulse_, accounted_velocity_;
   Watched before_, after_;
   std::vector<Index> previous_members_;  // begin_segment's buffer
-  ImpactSampler sampler_;
+  ImpactSampler* sampler_ = nullptr;     // the integrator's, for the impact being integrated
 };
 
 void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
-                                            const Eigen::VectorXd& u_minus,
-                                            std::span<const ContactLaw> laws,
+                                            const Eigen::VectorXd& u_minus, const LawTable& laws,
                                             const LzbAdaptiveOptions& options) {
   const std::size_t m = laws.size();
   const double fastest = -u_minus.minCoeff();
@@ -140,16 +138,16 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
   reset(energy_tolerance_, 0.0);
   reset(gives_nothing_back_, false);
   for (std::size_t j = 0; j < m; ++j) {
-    const ContactLaw& law = laws[j];
-    const double e2 = law.effective_restitution() * law.effective_restitution();
-    const bool mono = law.model == ComplianceModel::mono_stiffness;
+    const LawConstants& law = laws[j];
+    const double e2 = law.restitution * law.restitution;
+    const bool mono = law.mono_stiffness;
     stiffness_[j] = law.stiffness;
     exponent_[j] = law.exponent;
     // expansion: d delta/dt = -u / e^2 (bi-stiffness) or -u (mono-stiffness)
-    expansion_rate_[j] = mono || e2 == 0.0 ? 1.0 : 1.0 / e2;
+    expansion_rate_[j] = mono || e2 == 0.0 ? 1.0 : law.inverse_e2;
     // released at delta_c (1 - e^2)^(1/(1+eta)) (mono-stiffness) or at 0 (bi-stiffness)
-    release_factor_[j] = mono ? std::pow(1.0 - e2, 1.0 / (1.0 + law.exponent)) : 0.0;
-    gives_nothing_back_[j] = law.effective_restitution() == 0.0;
+    release_factor_[j] = mono ? std::pow(1.0 - e2, 1.0 / law.one_plus_exponent) : 0.0;
+    gives_nothing_back_[j] = law.restitution == 0.0;
     // the natural scales of contact j: the impulse that stops V, the indentation that stores
     // the energy V^2 / (2 H_jj)
     const double h = diagonal(Index(j));
@@ -172,8 +170,6 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
   members_.clear();
   steps_ = contact_steps_ = 0;
   segment_start_ = last_sample_ = closed_impulse_sum_ = 0.0;
-
-  sampler_.reset(options.sampled_contacts, m);
 }
 
 // The members of the segment that starts now: the contacts holding energy, then the open
@@ -414,17 +410,17 @@ void LzbAdaptiveIntegrator::Impact::notify(double t, const State* y, ImpactObser
   if (y)
     for (std::size_t a = 0; a < active_; ++a)
       impulse_sum += (*y)[active_ + a] * impulse_scale_[members_[a]];
-  sampler_.observe(observer, steps_, t, impulse_sum,
-                   [&](Index j, double& u, double& energy_now, double& force_now, double& impulse) {
-                     const int p = y ? member_of_[j] : -1;
-                     const bool active = p >= 0 && std::size_t(p) < active_;
-                     const double delta = active ? delta_of(std::size_t(p), *y) : delta_[j];
-                     u = p >= 0 ? velocity_at_[std::size_t(p)] : velocity_[j];
-                     energy_now = energy(j, delta);
-                     force_now = force(j, delta);
-                     impulse = impulse_[j] +
-                               (active ? (*y)[active_ + std::size_t(p)] * impulse_scale_[j] : 0.0);
-                   });
+  sampler_->observe(
+      observer, steps_, t, impulse_sum,
+      [&](Index j, double& u, double& energy_now, double& force_now, double& impulse) {
+        const int p = y ? member_of_[j] : -1;
+        const bool active = p >= 0 && std::size_t(p) < active_;
+        const double delta = active ? delta_of(std::size_t(p), *y) : delta_[j];
+        u = p >= 0 ? velocity_at_[std::size_t(p)] : velocity_[j];
+        energy_now = energy(j, delta);
+        force_now = force(j, delta);
+        impulse = impulse_[j] + (active ? (*y)[active_ + std::size_t(p)] * impulse_scale_[j] : 0.0);
+      });
 }
 
 // The samples of the observer that fall in the part of the current step up to t.
@@ -438,17 +434,14 @@ void LzbAdaptiveIntegrator::Impact::sample_until(double t, ImpactObserver& obser
   }
 }
 
-LzbResult LzbAdaptiveIntegrator::Impact::finish(const Eigen::VectorXd& u_minus, double t) {
-  LzbResult result;
+void LzbAdaptiveIntegrator::Impact::finish(double t, LzbResult& result) {
   const std::size_t m = phase_.size();
   result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse_.data(), Index(m));
-  result.velocity = u_minus + (*H_) * result.impulse;
   result.work = Eigen::Map<const Eigen::VectorXd>(work_.data(), Index(m));
   result.stored_energy = Eigen::VectorXd::Zero(Index(m));
   for (std::size_t j = 0; j < m; ++j) {
     if (phase_[j] == Phase::open) continue;
     result.stored_energy(Index(j)) = energy(Index(j), delta_[j]);
-    result.residual_energy += result.stored_energy(Index(j));
     if (const double f = force(Index(j), delta_[j]); f > max_force_[j]) {
       max_force_[j] = f;  // still in compression at the end
       time_of_max_[j] = t;
@@ -459,16 +452,15 @@ LzbResult LzbAdaptiveIntegrator::Impact::finish(const Eigen::VectorXd& u_minus, 
   result.steps = steps_;
   result.contact_steps = contact_steps_;
   result.duration = t;
-  return result;
 }
 
-LzbResult LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
-                                             const Eigen::VectorXd& diagonal,
-                                             const Eigen::VectorXd& u_minus,
-                                             std::span<const ContactLaw> laws,
-                                             const LzbAdaptiveOptions& options,
-                                             ImpactObserver* observer) {
+void LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
+                                        const Eigen::VectorXd& diagonal,
+                                        const Eigen::VectorXd& u_minus, const LawTable& laws,
+                                        const LzbAdaptiveOptions& options, ImpactSampler& sampler,
+                                        ImpactObserver* observer, LzbResult& result) {
   H_ = &H;
+  sampler_ = &sampler;
   prepare(diagonal, u_minus, laws, options);
   begin_segment();
   // the first step: a small share of the time the fastest contact takes to stop
@@ -485,13 +477,13 @@ LzbResult LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& 
     if (steps_ + restarts >= options.max_steps) {
       account_work(ode_.state());
       end_segment(ode_.state());
-      LzbResult result = finish(u_minus, ode_.time());
+      finish(ode_.time(), result);
       result.status = LzbStatus::step_limit;
       result.message =
           "the impact did not end within max_steps = " + std::to_string(options.max_steps) +
           " steps and restarts";
       if (observer) notify(result.duration, nullptr, *observer);
-      return result;
+      return;
     }
     const double step_start = ode_.time();
     ode_.step(rhs);
@@ -525,13 +517,12 @@ LzbResult LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& 
     segment_start_ = t;
     ++restarts;
   }
-  LzbResult result = finish(u_minus, t);
+  finish(t, result);
   if (observer) notify(t, nullptr, *observer);
-  return result;
 }
 
 LzbAdaptiveIntegrator::LzbAdaptiveIntegrator(LzbAdaptiveOptions options)
-    : options_(std::move(options)) {
+    : ImpactIntegrator(options.sampled_contacts), options_(std::move(options)) {
   validate(options_, "adaptive LZB options");
 }
 
@@ -547,28 +538,15 @@ void LzbAdaptiveIntegrator::set_tolerance(double tolerance) {
   impact_.reset();
 }
 
-LzbResult LzbAdaptiveIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
-                                           const Eigen::VectorXd& u_minus,
-                                           std::span<const ContactLaw> laws,
-                                           ImpactObserver* observer) {
-  const Eigen::VectorXd diagonal =
-      checked_impact_input(H, u_minus, laws, options_.sampled_contacts);
-  if (!impact_) impact_ = std::make_unique<Impact>(options_.tolerance);
-  if (H.isCompressed()) return impact_->run(H, diagonal, u_minus, laws, options_, observer);
-  Eigen::SparseMatrix<double> compressed = H;
-  compressed.makeCompressed();
-  return impact_->run(compressed, diagonal, u_minus, laws, options_, observer);
+Eigen::VectorXd LzbAdaptiveIntegrator::velocity_resolution(const Eigen::VectorXd& diagonal,
+                                                           const Eigen::VectorXd& u_minus) const {
+  return Eigen::VectorXd::Constant(diagonal.size(), options_.tolerance * (-u_minus.minCoeff()));
 }
 
-LzbResult LzbAdaptiveIntegrator::integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
-                                           std::span<const ContactLaw> laws,
-                                           ImpactObserver* observer) {
-  const Eigen::VectorXd diagonal =
-      checked_impact_input(H, u_minus, laws, options_.sampled_contacts);
-  Eigen::SparseMatrix<double> sparse = H.sparseView();
-  sparse.makeCompressed();
+void LzbAdaptiveIntegrator::run(const Input& input, ImpactObserver* observer, LzbResult& result) {
   if (!impact_) impact_ = std::make_unique<Impact>(options_.tolerance);
-  return impact_->run(sparse, diagonal, u_minus, laws, options_, observer);
+  impact_->run(input.H, input.diagonal, input.u_minus, input.laws, options_, sampler(), observer,
+               result);
 }
 
 }  // namespace mimpact::numerics

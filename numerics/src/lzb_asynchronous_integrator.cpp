@@ -12,7 +12,7 @@
 namespace mimpact::numerics {
 
 using Eigen::Index;
-using Law = LzbAsynchronousIntegrator::Law;
+using Law = LawConstants;
 using Contact = LzbAsynchronousIntegrator::Contact;
 using Step = LzbAsynchronousIntegrator::Step;
 
@@ -51,7 +51,7 @@ double next_time(double time, double length) {
 }  // namespace
 
 LzbAsynchronousIntegrator::LzbAsynchronousIntegrator(LzbOptions options)
-    : options_(std::move(options)) {
+    : ImpactIntegrator(options.sampled_contacts), options_(std::move(options)) {
   validate(options_, "LZB options");
 }
 
@@ -62,59 +62,43 @@ void LzbAsynchronousIntegrator::set_delta_p(double delta_p) {
   options_ = std::move(changed);
 }
 
-LzbResult LzbAsynchronousIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
-                                               const Eigen::VectorXd& u_minus,
-                                               std::span<const ContactLaw> laws,
-                                               ImpactObserver* observer) {
-  prepare(checked_impact_input(H, u_minus, laws, options_.sampled_contacts), u_minus, laws);
-  if (H.isCompressed()) return run(detail::SparseDelassus(H), u_minus, observer);
-  Eigen::SparseMatrix<double> compressed = H;
-  compressed.makeCompressed();
-  return run(detail::SparseDelassus(compressed), u_minus, observer);
+Eigen::VectorXd LzbAsynchronousIntegrator::velocity_resolution(const Eigen::VectorXd& diagonal,
+                                                               const Eigen::VectorXd&) const {
+  return diagonal.unaryExpr([this](double h_jj) { return options_.velocity_tolerance(h_jj); });
 }
 
-LzbResult LzbAsynchronousIntegrator::integrate(const Eigen::MatrixXd& H,
-                                               const Eigen::VectorXd& u_minus,
-                                               std::span<const ContactLaw> laws,
-                                               ImpactObserver* observer) {
-  prepare(checked_impact_input(H, u_minus, laws, options_.sampled_contacts), u_minus, laws);
-  return run(detail::DenseDelassus{H}, u_minus, observer);
+void LzbAsynchronousIntegrator::run(const Input& input, ImpactObserver* observer,
+                                    LzbResult& result) {
+  prepare(input.diagonal, input.u_minus, input.laws);
+  detail::with_columns(input.H, options_.dense_up_to, dense_,
+                       [&](const auto& H) { kicks(H, observer, result); });
 }
 
 void LzbAsynchronousIntegrator::prepare(const Eigen::VectorXd& diagonal,
-                                        const Eigen::VectorXd& u_minus,
-                                        std::span<const ContactLaw> laws) {
+                                        const Eigen::VectorXd& u_minus, const LawTable& laws) {
   const std::size_t m = laws.size();
-  laws_.assign(m, Law{});
-  for (std::size_t j = 0; j < m; ++j) {
-    const ContactLaw& law = laws[j];
-    Law& constants = laws_[j];
-    constants.coefficient = law.force_coefficient();
-    constants.power = law.exponent / (1.0 + law.exponent);
-    const double e = law.effective_restitution();
-    constants.restitution = e;
-    constants.inverse_e2 = e > 0.0 ? 1.0 / (e * e) : 0.0;
-    constants.h_jj = diagonal(Index(j));
-    constants.tolerance_u = options_.velocity_tolerance(diagonal(Index(j)));
-    constants.tolerance_energy = options_.energy_tolerance(diagonal(Index(j)));
-    constants.mono_stiffness = law.model == ComplianceModel::mono_stiffness;
-  }
+  laws_ = laws.data();
   contacts_.assign(m, Contact{});
+  for (std::size_t j = 0; j < m; ++j) {
+    Contact& contact = contacts_[j];
+    contact.h_jj = diagonal(Index(j));
+    contact.tolerance_u = options_.velocity_tolerance(contact.h_jj);
+    contact.tolerance_energy = options_.energy_tolerance(contact.h_jj);
+  }
   u_.assign(u_minus.data(), u_minus.data() + m);
   queue_.clear();
   impulse_sum_ = 0.0;
-  sampler_.reset(options_.sampled_contacts, m);
 }
 
 void LzbAsynchronousIntegrator::notify(ImpactObserver* observer, std::int64_t steps, double time) {
-  sampler_.observe(*observer, steps, time, impulse_sum_,
-                   [this](Index j, double& u, double& energy, double& force, double& impulse) {
-                     const Contact& contact = contacts_[std::size_t(j)];
-                     u = u_[std::size_t(j)];
-                     energy = contact.energy;
-                     force = force_of(laws_[std::size_t(j)], contact.energy);
-                     impulse = contact.impulse;
-                   });
+  sampler().observe(*observer, steps, time, impulse_sum_,
+                    [this](Index j, double& u, double& energy, double& force, double& impulse) {
+                      const Contact& contact = contacts_[std::size_t(j)];
+                      u = u_[std::size_t(j)];
+                      energy = contact.energy;
+                      force = force_of(laws_[std::size_t(j)], contact.energy);
+                      impulse = contact.impulse;
+                    });
 }
 
 void LzbAsynchronousIntegrator::schedule(Index j, double due) {
@@ -180,8 +164,8 @@ double LzbAsynchronousIntegrator::step_length(Index j, double limit) const {
   const double u = u_[std::size_t(j)];
   const double q = 1.0 - law.power;
   double length = INFINITY;
-  if (contact.energy > law.tolerance_energy) {
-    const double natural = std::sqrt(contact.energy / (law.power * law.h_jj));
+  if (contact.energy > contact.tolerance_energy) {
+    const double natural = std::sqrt(contact.energy / (law.power * contact.h_jj));
     length = std::min(options_.delta_p, kNaturalShare * natural) / force_of(law, contact.energy);
     if (u > 0.0 && (law.mono_stiffness || law.restitution > 0.0)) {
       const double f = law.mono_stiffness ? 1.0 : law.inverse_e2;
@@ -241,7 +225,7 @@ void LzbAsynchronousIntegrator::kick(const Delassus& H, Index j, double time) {
   const Law& law = laws_[std::size_t(j)];
   const double due = contact.absorbed - contact.ahead;
   contact.absorbed = contact.ahead = 0.0;
-  if (contact.energy > law.tolerance_energy) {
+  if (contact.energy > contact.tolerance_energy) {
     const double force = force_of(law, contact.energy);
     if (force > contact.max_force) {
       contact.max_force = force;
@@ -252,7 +236,7 @@ void LzbAsynchronousIntegrator::kick(const Delassus& H, Index j, double time) {
     apply_impulse(H, j, due + contact.ahead, time);
   } else {
     apply_impulse(H, j, due, time);
-    if (u_[std::size_t(j)] >= -law.tolerance_u) {
+    if (u_[std::size_t(j)] >= -contact.tolerance_u) {
       contact.in_impact = false;
       contact.energy = contact.w = 0.0;
       contact.pace = INFINITY;
@@ -277,7 +261,7 @@ void LzbAsynchronousIntegrator::apply_impulse(const Delassus& H, Index j, double
     u_[std::size_t(i)] = after;
     if (contact.in_impact) {
       if (before < 0.0 && after >= 0.0 && contact.energy > 0.0) set_release_level(Index(i));
-    } else if (i != j && after < -laws_[std::size_t(i)].tolerance_u) {
+    } else if (i != j && after < -contact.tolerance_u) {
       join(H, i, time);
     }
   });
@@ -303,15 +287,14 @@ void LzbAsynchronousIntegrator::set_release_level(Index i) {
 }
 
 template <class Delassus>
-LzbResult LzbAsynchronousIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_minus,
-                                         ImpactObserver* observer) {
-  const Index m = Index(laws_.size());
+void LzbAsynchronousIntegrator::kicks(const Delassus& H, ImpactObserver* observer,
+                                      LzbResult& result) {
+  const Index m = Index(contacts_.size());
   for (Index j = 0; j < m; ++j)
     if (!contacts_[std::size_t(j)].in_impact &&
-        u_[std::size_t(j)] < -laws_[std::size_t(j)].tolerance_u)
+        u_[std::size_t(j)] < -contacts_[std::size_t(j)].tolerance_u)
       join(H, j, 0.0);
 
-  LzbResult result;
   double time = 0.0;
   if (observer) notify(observer, 0, time);
   while (!queue_.empty()) {
@@ -327,6 +310,9 @@ LzbResult LzbAsynchronousIntegrator::run(const Delassus& H, const Eigen::VectorX
       break;
     }
     time = step.time;
+    // a clock past double precision can only stay there: the base reports the overflow (the
+    // kicks ran to max_steps, 1e9 of them, before)
+    if (!std::isfinite(time)) break;
     kick(H, Index(step.contact), time);
     ++result.steps;
     if (observer && options_.sample_every > 0 && result.steps % options_.sample_every == 0)
@@ -348,19 +334,7 @@ LzbResult LzbAsynchronousIntegrator::run(const Delassus& H, const Eigen::VectorX
     result.time_of_max_force(j) = contact.time_of_max;
     result.work(j) = contact.work;
     result.stored_energy(j) = contact.in_impact ? contact.energy : 0.0;
-    result.residual_energy += result.stored_energy(j);
   }
-  result.velocity = u_minus;
-  for (Index j = 0; j < m; ++j)
-    H.for_each_in_column(
-        j, [&](Index i, double h_ij) { result.velocity(i) += h_ij * result.impulse(j); });
-  if (!(std::isfinite(time) && result.velocity.allFinite() && result.max_force.allFinite()))
-    throw Error("the impact's " +
-                std::string(std::isfinite(time) ? "velocities or forces" : "duration") +
-                " overflowed double precision after " + std::to_string(result.steps) +
-                " contact steps; the contact laws' stiffness K and exponent eta are out of the "
-                "range it resolves");
-  return result;
 }
 
 }  // namespace mimpact::numerics

@@ -11,10 +11,6 @@ namespace mimpact::numerics {
 
 using Eigen::Index;
 
-std::string_view to_string(LzbStatus status) {
-  return status == LzbStatus::terminated ? "terminated" : "step_limit";
-}
-
 double LzbOptions::velocity_tolerance(double h_jj) const {
   return fixed_thresholds ? fixed_thresholds->velocity
                           : termination_velocity_factor * h_jj * delta_p;
@@ -30,7 +26,8 @@ using detail::DenseDelassus;
 using detail::power_of;
 using detail::SparseDelassus;
 
-LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options) : options_(std::move(options)) {
+LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options)
+    : ImpactIntegrator(options.sampled_contacts), options_(std::move(options)) {
   validate(options_, "LZB options");
 }
 
@@ -41,50 +38,30 @@ void LzbImpulseIntegrator::set_delta_p(double delta_p) {
   options_ = std::move(changed);
 }
 
-LzbResult LzbImpulseIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
-                                          const Eigen::VectorXd& u_minus,
-                                          std::span<const ContactLaw> laws,
-                                          ImpactObserver* observer) {
-  prepare(checked_impact_input(H, u_minus, laws, options_.sampled_contacts), u_minus, laws);
-  if (H.isCompressed()) return run(SparseDelassus(H), u_minus, laws, observer);
-  Eigen::SparseMatrix<double> compressed = H;
-  compressed.makeCompressed();
-  return run(SparseDelassus(compressed), u_minus, laws, observer);
+Eigen::VectorXd LzbImpulseIntegrator::velocity_resolution(const Eigen::VectorXd& diagonal,
+                                                          const Eigen::VectorXd&) const {
+  return diagonal.unaryExpr([this](double h_jj) { return options_.velocity_tolerance(h_jj); });
 }
 
-LzbResult LzbImpulseIntegrator::integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
-                                          std::span<const ContactLaw> laws,
-                                          ImpactObserver* observer) {
-  prepare(checked_impact_input(H, u_minus, laws, options_.sampled_contacts), u_minus, laws);
-  return run(DenseDelassus{H}, u_minus, laws, observer);
+void LzbImpulseIntegrator::run(const Input& input, ImpactObserver* observer, LzbResult& result) {
+  prepare(input.diagonal, input.u_minus, input.laws);
+  const LawConstants* law = input.laws.data();
+  detail::with_columns(input.H, options_.dense_up_to, dense_,
+                       [&](const auto& H) { step(H, law, observer, result); });
 }
 
 void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
-                                   std::span<const ContactLaw> laws) {
+                                   const LawTable& laws) {
   const std::size_t m = laws.size();
 
   auto reset = [m](auto& buffer, auto value) { buffer.assign(m, value); };
-  reset(force_coefficient_, 0.0);
-  reset(force_power_, 0.0);
-  reset(one_plus_exponent_, 0.0);
-  reset(inverse_e2_, 0.0);
-  reset(restitution_, 0.0);
   reset(tolerance_u_, 0.0);
   reset(tolerance_energy_, 0.0);
-  if (flag_capacity_ < m) {  // bool arrays: no aliasing with the doubles in the hot loop
-    mono_stiffness_ = std::make_unique<bool[]>(m);
+  if (flag_capacity_ < m) {  // a bool array: no aliasing with the doubles in the hot loop
     in_impact_ = std::make_unique<bool[]>(m);
     flag_capacity_ = m;
   }
   for (std::size_t j = 0; j < m; ++j) {
-    const ContactLaw& law = laws[j];
-    force_coefficient_[j] = law.force_coefficient();
-    force_power_[j] = law.exponent / (1.0 + law.exponent);
-    one_plus_exponent_[j] = 1.0 + law.exponent;
-    const double e = law.effective_restitution();
-    restitution_[j] = e;
-    inverse_e2_[j] = e > 0.0 ? 1.0 / (e * e) : 0.0;
-    mono_stiffness_[j] = law.model == ComplianceModel::mono_stiffness;
     tolerance_u_[j] = options_.velocity_tolerance(diagonal(Index(j)));
     tolerance_energy_[j] = options_.energy_tolerance(diagonal(Index(j)));
   }
@@ -110,34 +87,26 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen:
       in_impact_[j] = true;
       active_[initially_active_++] = Index(j);
     }
-
-  sampler_.reset(options_.sampled_contacts, m);
 }
 
 void LzbImpulseIntegrator::notify(ImpactObserver* observer, std::int64_t step, double time,
                                   double principal) {
-  sampler_.observe(*observer, step, time, principal,
-                   [this](Index j, double& u, double& energy, double& force, double& impulse) {
-                     u = u_[j];
-                     energy = energy_[j];
-                     force = force_[j];
-                     impulse = impulse_[j];
-                   });
+  sampler().observe(*observer, step, time, principal,
+                    [this](Index j, double& u, double& energy, double& force, double& impulse) {
+                      u = u_[j];
+                      energy = energy_[j];
+                      force = force_[j];
+                      impulse = impulse_[j];
+                    });
 }
 
 template <class Delassus>
-LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_minus,
-                                    std::span<const ContactLaw> laws, ImpactObserver* observer) {
+void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
+                                ImpactObserver* observer, LzbResult& result) {
   // Local pointers keep the hot loop free of reloads through the vectors' members.
   const double delta_p = options_.delta_p;
-  const double* coefficient = force_coefficient_.data();
-  const double* power = force_power_.data();
-  const double* one_plus_exponent = one_plus_exponent_.data();
-  const double* inverse_e2 = inverse_e2_.data();
-  const double* restitution = restitution_.data();
   const double* tolerance_u = tolerance_u_.data();
   const double* tolerance_energy = tolerance_energy_.data();
-  const bool* mono = mono_stiffness_.get();
   double* u = u_.data();
   double* u_old = u_old_.data();
   double* energy = energy_.data();
@@ -156,7 +125,6 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
 
   std::int64_t step = 0;
   double time = 0.0, principal = 0.0;
-  LzbResult result;
   if (observer) notify(observer, step, time, principal);
 
   while (true) {
@@ -188,7 +156,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
     // F = c K^(1/(1+eta)) E^(eta/(1+eta)), in a loop of its own so the power calls pipeline
     for (std::size_t a = 0; a < active_count; ++a) {
       const Index j = active[a];
-      force_hat[j] = coefficient[j] * power_of(force_hat[j], power[j]);
+      force_hat[j] = law[j].coefficient * power_of(force_hat[j], law[j].power);
     }
     // the primary contact has the largest force; ties go to the lowest index
     Index primary = -1;
@@ -219,7 +187,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       } else if (energy[j] > 0.0) {
         dp = f * impulse_per_force;
       } else {  // entering compression: F_j from E_j = |u_j| dP_j, solved for dP_j
-        dp = delta_p * power_of(f / primary_force, one_plus_exponent[j]);
+        dp = delta_p * power_of(f / primary_force, law[j].one_plus_exponent);
         f = dp / impulse_per_force;
       }
       step_impulse[j] = dp;
@@ -236,14 +204,14 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
     {
       double du = 0.0;  // H is symmetric: column pi is row pi
       H.for_each_in_column(primary, [&](Index i, double h_ij) { du += h_ij * step_impulse[i]; });
-      const double e = restitution[primary];
-      const bool in_expansion_mono = mono[primary];
+      const double e = law[primary].restitution;
+      const bool in_expansion_mono = law[primary].mono_stiffness;
       const double release_level =
           in_expansion_mono
               ? (1.0 - e * e) * (u[primary] < 0.0 ? energy[primary] : compression_work[primary])
               : 0.0;
       const double share = detail::phase_end(u[primary], du, energy[primary], delta_p,
-                                             in_expansion_mono ? 1.0 : inverse_e2[primary],
+                                             in_expansion_mono ? 1.0 : law[primary].inverse_e2,
                                              release_level, !in_expansion_mono && e == 0.0);
       if (share < 1.0)
         for (std::size_t a = 0; a < active_count; ++a) step_impulse[active[a]] *= share;
@@ -278,7 +246,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
       impulse_carry[j] = (sum - impulse[j]) - added;
       impulse[j] = sum;
       double e_j = energy[j];
-      if (mono[j]) {
+      if (law[j].mono_stiffness) {
         if (u_old[j] < 0.0 && u[j] >= 0.0) {
           // the compression work is the energy where u crosses 0 inside the step
           const double share = -u_old[j] / (u[j] - u_old[j]);
@@ -286,14 +254,14 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
         }
         e_j -= mean_u * dp;
         if (j == primary) primary_energy_end = e_j;
-        const double e = restitution[j];
+        const double e = law[j].restitution;
         if (u[j] >= 0.0 && e_j <= (1.0 - e * e) * compression_work[j]) e_j = 0.0;
       } else if (mean_u < 0.0) {
         e_j -= mean_u * dp;
       } else {  // e = 0 drops the energy at once, as if it fell to -infinity
-        e_j = restitution[j] > 0.0 ? e_j - mean_u * dp * inverse_e2[j] : -INFINITY;
+        e_j = law[j].restitution > 0.0 ? e_j - mean_u * dp * law[j].inverse_e2 : -INFINITY;
       }
-      if (j == primary && !mono[j]) primary_energy_end = e_j;
+      if (j == primary && !law[j].mono_stiffness) primary_energy_end = e_j;
       energy[j] = std::max(e_j, 0.0);
     }
 
@@ -308,7 +276,7 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
     }
 
     time += detail::step_duration(step_impulse[primary], primary_energy_start, primary_energy_end,
-                                  primary_force, coefficient[primary], power[primary]);
+                                  primary_force, law[primary].coefficient, law[primary].power);
     principal += step_impulse[primary];
     ++step;
     if (observer && options_.sample_every > 0 && step % options_.sample_every == 0)
@@ -316,25 +284,14 @@ LzbResult LzbImpulseIntegrator::run(const Delassus& H, const Eigen::VectorXd& u_
   }
   if (observer) notify(observer, step, time, principal);
 
-  const Index m = Index(laws.size());
+  const Index m = Index(u_.size());
   result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse, m);
-  result.velocity = u_minus;
-  for (Index j = 0; j < m; ++j)
-    H.for_each_in_column(j, [&](Index i, double h_ij) { result.velocity(i) += h_ij * impulse[j]; });
   result.max_force = Eigen::Map<const Eigen::VectorXd>(max_force, m);
   result.time_of_max_force = Eigen::Map<const Eigen::VectorXd>(time_of_max, m);
-  for (std::size_t a = 0; a < active_count; ++a) result.residual_energy += energy[active[a]];
   result.work = Eigen::Map<const Eigen::VectorXd>(work, m);
   result.stored_energy = Eigen::Map<const Eigen::VectorXd>(energy, m);
   result.steps = step;
   result.duration = time;
-  // finite inputs can still overflow (an exponent of 1e3 puts E^(eta/(1+eta)) past double)
-  if (!(std::isfinite(time) && result.velocity.allFinite() && result.max_force.allFinite()))
-    throw Error(
-        "the impact's " + std::string(std::isfinite(time) ? "velocities or forces" : "duration") +
-        " overflowed double precision after " + std::to_string(step) +
-        " steps; the contact laws' stiffness K and exponent eta are out of the range it resolves");
-  return result;
 }
 
 }  // namespace mimpact::numerics

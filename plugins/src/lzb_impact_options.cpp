@@ -52,4 +52,13 @@ void LzbImpactOptions::check(std::string_view owner, const fields::Labels& label
            " both choose the impulse step; allowed: one of them");
 }
 
+std::unique_ptr<numerics::ImpactIntegrator> make_impact_integrator(
+    const LzbImpactOptions& options) {
+  for (const ImpactIntegratorRegistration& registration : kImpactIntegrators)
+    if (registration.id == options.chosen_integrator()) return registration.make(options);
+  throw Error("the LZB integrator " +
+              std::to_string(static_cast<int>(options.chosen_integrator())) +
+              " is not registered in kImpactIntegrators");
+}
+
 }  // namespace mimpact::plugins

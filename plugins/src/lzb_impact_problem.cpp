@@ -22,10 +22,7 @@ LzbImpactOptions checked(LzbImpactOptions options) {
 }  // namespace
 
 LzbImpactProblem::LzbImpactProblem(LzbImpactOptions options)
-    : options_(checked(std::move(options))),
-      impulse_steps_(options_.impulse_step_options()),
-      asynchronous_(options_.impulse_step_options()),
-      adaptive_(options_.adaptive_options()) {}
+    : options_(checked(std::move(options))), integrator_(make_impact_integrator(options_)) {}
 
 void LzbImpactProblem::check_law(const kernel::NonSmoothLaw& law, const std::string& which) const {
   if (!dynamic_cast<const LzbLaw*>(&law))
@@ -89,11 +86,7 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   if (observer_) {
     samples.emplace(closed, *observer_);
     const std::vector<Index>& sampled = options_.impulse_steps.sampled_contacts;
-    if (!sampled.empty()) {
-      impulse_steps_.set_sampled_contacts(sampled_places(closed, sampled));
-      asynchronous_.set_sampled_contacts(sampled_places(closed, sampled));
-      adaptive_.set_sampled_contacts(sampled_places(closed, sampled));
-    }
+    if (!sampled.empty()) integrator_->set_sampled_contacts(sampled_places(closed, sampled));
   }
   const numerics::LzbResult result = integrate(delassus, u_minus, samples ? &*samples : nullptr);
 
@@ -108,13 +101,8 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   report.impulse = result.impulse;
   report.max_force = result.max_force;
   report.time_of_max_force = result.time_of_max_force;
-  // the integrator's termination tolerance tol_u_j
-  if (options_.integrator == LzbIntegrator::adaptive)
-    report.velocity_resolution = Eigen::VectorXd::Constant(
-        u_minus.size(), options_.adaptive_tolerance() * (-u_minus.minCoeff()));
-  else
-    report.velocity_resolution = delassus.H().diagonal().unaryExpr(
-        [&](double h_jj) { return impulse_steps_.options().velocity_tolerance(h_jj); });
+  report.velocity_resolution =
+      integrator_->velocity_resolution(Eigen::VectorXd(delassus.H().diagonal()), u_minus);
   report.steps = result.steps;
   report.contact_steps = result.contact_steps;
   report.residual_energy = result.residual_energy;
@@ -133,28 +121,18 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   return report;
 }
 
-// The chosen integrator on H, dense for small impacts. The impulse steps (either kind) take
-// delta_p as a share of the impact's natural impulse when relative_delta_p is set.
+// The chosen integrator; the impulse steps (either kind) take delta_p as a share of the impact's
+// natural impulse when relative_delta_p is set.
 numerics::LzbResult LzbImpactProblem::integrate(const numerics::Delassus& delassus,
                                                 const Eigen::VectorXd& u_minus,
                                                 numerics::ImpactObserver* observer) {
-  const bool dense = delassus.H().rows() <= options_.dense_up_to;
-  if (options_.integrator == LzbIntegrator::adaptive)
-    return dense ? adaptive_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
-                 : adaptive_.integrate(delassus.H(), u_minus, laws_, observer);
   if (options_.relative_delta_p) {
     const double natural_impulse =
         (-u_minus).cwiseMax(0.0).cwiseQuotient(Eigen::VectorXd(delassus.H().diagonal())).maxCoeff();
-    if (natural_impulse > 0.0) {
-      impulse_steps_.set_delta_p(*options_.relative_delta_p * natural_impulse);
-      asynchronous_.set_delta_p(*options_.relative_delta_p * natural_impulse);
-    }
+    if (natural_impulse > 0.0)
+      integrator_->set_delta_p(*options_.relative_delta_p * natural_impulse);
   }
-  if (options_.integrator == LzbIntegrator::asynchronous)
-    return dense ? asynchronous_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
-                 : asynchronous_.integrate(delassus.H(), u_minus, laws_, observer);
-  return dense ? impulse_steps_.integrate(Eigen::MatrixXd(delassus.H()), u_minus, laws_, observer)
-               : impulse_steps_.integrate(delassus.H(), u_minus, laws_, observer);
+  return integrator_->integrate(delassus, u_minus, laws_, observer);
 }
 
 }  // namespace mimpact::plugins

@@ -56,34 +56,7 @@ TEST(AdaptiveLone, LinearSpringDurationIsAQuarterPeriodPerPhase) {
   }
 }
 
-// Chain C1 of Nguyen & Brogliato (2011): 21 steel beads of radius 10 mm, the first at 1 m/s.
-struct UniformChain {
-  int beads = 21;
-  double mass = 4.0 / 3.0 * std::numbers::pi * 0.01 * 0.01 * 0.01 * 7780.0;
-  // Hertz between equal spheres: K = E / (3 (1 - nu^2)) sqrt(2 R) ... as sqrt(R*) 4/3 E*
-  double stiffness = 4.0 / 3.0 * (203e9 / (2.0 * (1.0 - 0.09))) * std::sqrt(0.005);
-
-  int contacts() const { return beads - 1; }
-  Eigen::SparseMatrix<double> delassus() const {
-    return testing::uniform_chain_delassus(contacts(), mass);
-  }
-  // the first bead approaches the second at 1 m/s, the others rest
-  Eigen::VectorXd struck() const {
-    Eigen::VectorXd u_minus = Eigen::VectorXd::Zero(contacts());
-    u_minus(0) = -1.0;
-    return u_minus;
-  }
-};
-
-Eigen::VectorXd body_velocities(const UniformChain& chain, const Eigen::VectorXd& impulse) {
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(chain.beads);
-  v(0) = 1.0;
-  for (int j = 0; j + 1 < chain.beads; ++j) {
-    v(j) -= impulse(j) / chain.mass;
-    v(j + 1) += impulse(j) / chain.mass;
-  }
-  return v;
-}
+using testing::UniformChain;
 
 // For e = 1 the continuous LZB impact is the Hertz chain: at tolerance 1e-10 the adaptive
 // integrator lands within 1e-8 m/s of the tests' own integration in time.
@@ -94,7 +67,7 @@ TEST(AdaptiveChain, ElasticChainIsTheExactHertzChain) {
   LzbAdaptiveIntegrator integrator({.tolerance = 1e-10});
   const LzbResult result = integrator.integrate(chain.delassus(), chain.struck(), laws);
   ASSERT_EQ(result.status, LzbStatus::terminated);
-  const Eigen::VectorXd velocity = body_velocities(chain, result.impulse);
+  const Eigen::VectorXd velocity = chain.velocity_after(result.impulse);
   Eigen::VectorXd start = Eigen::VectorXd::Zero(chain.beads);
   start(0) = 1.0;
   const testing::HertzChainOutcome exact =
@@ -141,7 +114,7 @@ TEST(AdaptiveChain, DissipativeChainEndsAsOneBlock) {
     LzbAdaptiveIntegrator adaptive({.tolerance = 1e-10});
     const LzbResult continuous = adaptive.integrate(H, u_minus, laws);
     ASSERT_EQ(continuous.status, LzbStatus::terminated);
-    const Eigen::VectorXd velocity = body_velocities(chain, continuous.impulse);
+    const Eigen::VectorXd velocity = chain.velocity_after(continuous.impulse);
     const double spread = (velocity.array() - 1.0 / chain.beads).abs().maxCoeff();
     std::printf("%s, e = 0.6: adaptive %lld steps, max |v+ - V/21| = %.3g m/s\n",
                 std::string(enum_name(model)).c_str(), (long long)continuous.steps, spread);

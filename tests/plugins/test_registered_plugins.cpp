@@ -25,7 +25,7 @@ TEST(RegisteredPlugins, CreatedByNameWithTheirParameters) {
   auto impacts = kernel::impact_problems().create("lzb", {{"delta_p", 1e-7}, {"dense_up_to", 4}});
   const auto& lzb = dynamic_cast<LzbImpactProblem&>(*impacts);
   EXPECT_EQ(lzb.options().delta_p, 1e-7);
-  EXPECT_EQ(lzb.options().dense_up_to, 4);
+  EXPECT_EQ(lzb.options().impulse_steps.dense_up_to, 4);
 
   EXPECT_EQ(kernel::contact_force_problems().create("acceleration-lcp")->name(),
             "acceleration-lcp");

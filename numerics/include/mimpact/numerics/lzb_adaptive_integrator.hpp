@@ -9,6 +9,7 @@
 
 #include "mimpact/common/fields.hpp"
 #include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/impact_integrator.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
@@ -33,7 +34,7 @@ struct LzbAdaptiveOptions {
   std::int64_t max_steps = 100'000'000;
   // The observer sees the state every this long (s) of the impact; 0: the start and the end.
   double sample_interval = 0.0;
-  // Contacts the observer sees; empty means all of them.
+  // Contacts the observer sees (empty: all of them), until set_sampled_contacts changes them.
   std::vector<Eigen::Index> sampled_contacts;
 
   template <class Self, class Visit>
@@ -57,28 +58,25 @@ struct LzbAdaptiveOptions {
 // The ODE carries only the contacts holding energy; the contacts they push (their neighbours
 // through H) are watched for joining, and every other contact costs nothing. The work of a
 // step is proportional to the contacts taking part: about the width of the wave in a chain.
-class LzbAdaptiveIntegrator {
+class LzbAdaptiveIntegrator : public ImpactIntegrator {
  public:
   explicit LzbAdaptiveIntegrator(LzbAdaptiveOptions options = {});
-  ~LzbAdaptiveIntegrator();
+  ~LzbAdaptiveIntegrator() override;
   LzbAdaptiveIntegrator(LzbAdaptiveIntegrator&&) noexcept;
   LzbAdaptiveIntegrator& operator=(LzbAdaptiveIntegrator&&) noexcept;
 
-  // The inputs and outputs of LzbImpulseIntegrator::integrate. In the result, `steps` counts
-  // the Runge-Kutta steps and `contact_steps` the contacts integrated, summed over them; the
-  // observer's principal_impulse is the sum of all impulses. Throws InvalidInput (naming the
-  // field) on bad input.
-  LzbResult integrate(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-  LzbResult integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-
+  // In the result, `steps` counts the Runge-Kutta steps and `contact_steps` the contacts
+  // integrated, summed over them; the observer's principal_impulse is the sum of all impulses.
+  std::string_view name() const override { return "adaptive"; }
   const LzbAdaptiveOptions& options() const { return options_; }
   // Changes the tolerance for the next impacts; throws InvalidInput when out of range.
   void set_tolerance(double tolerance);
-  void set_sampled_contacts(std::vector<Eigen::Index> contacts) {
-    options_.sampled_contacts = std::move(contacts);
-  }
+  // tolerance x V, V the fastest approach: the velocities are right to that
+  Eigen::VectorXd velocity_resolution(const Eigen::VectorXd& diagonal,
+                                      const Eigen::VectorXd& u_minus) const override;
+
+ protected:
+  void run(const Input& input, ImpactObserver* observer, LzbResult& result) override;
 
  private:
   class Impact;  // the state of one impact, its buffers reused from one impact to the next

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/impact_integrator.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
@@ -38,36 +39,22 @@ namespace mimpact::numerics {
 // contact costs in proportion to the impulse it carries, about P_j / delta_p kicks, which
 // follows the contacts the wave reaches. In `LzbResult`, `steps` and `contact_steps` both
 // count kicks, and the observer's principal_impulse is the sum of all impulses.
-class LzbAsynchronousIntegrator {
+class LzbAsynchronousIntegrator : public ImpactIntegrator {
  public:
   explicit LzbAsynchronousIntegrator(LzbOptions options = {});
 
-  // The inputs and outputs of LzbImpulseIntegrator::integrate; sample_every counts contact
-  // steps. Throws InvalidInput (naming the field) on bad input.
-  LzbResult integrate(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-  LzbResult integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-
+  std::string_view name() const override { return "asynchronous"; }
+  // The options of LzbImpulseIntegrator; sample_every counts kicks.
   const LzbOptions& options() const { return options_; }
-  // Changes delta_p for the next impacts; throws InvalidInput unless it is finite and > 0.
-  void set_delta_p(double delta_p);
-  void set_sampled_contacts(std::vector<Eigen::Index> contacts) {
-    options_.sampled_contacts = std::move(contacts);
-  }
+  void set_delta_p(double delta_p) override;
+  // the impulse steps' tol_u_j
+  Eigen::VectorXd velocity_resolution(const Eigen::VectorXd& diagonal,
+                                      const Eigen::VectorXd& u_minus) const override;
 
-  // The constants of one contact's law, as the steps use them.
-  struct Law {
-    double coefficient = 0.0;  // F = coefficient * E^power
-    double power = 0.0;        // a = eta / (1 + eta)
-    double restitution = 0.0;
-    double inverse_e2 = 0.0;  // 1 / e^2, 0 for e = 0
-    double h_jj = 0.0;        // H_jj (1 / kg)
-    double tolerance_u = 0.0, tolerance_energy = 0.0;
-    bool mono_stiffness = false;
-  };
   // The state of one contact. u lives apart: neighbours' kicks write it.
   struct Contact {
+    // constants of the impact: H_jj (1/kg) and the thresholds of taking part
+    double h_jj = 0.0, tolerance_u = 0.0, tolerance_energy = 0.0;
     double energy = 0.0, w = 0.0;  // E (J) and w = E^(1 - a), kept together
     double release_w = 0.0;        // w where an expansion releases the contact
     double clock = 0.0;            // up to when energy, absorbed and work are integrated (s)
@@ -87,11 +74,14 @@ class LzbAsynchronousIntegrator {
     std::uint32_t contact, stamp;
   };
 
+ protected:
+  void run(const Input& input, ImpactObserver* observer, LzbResult& result) override;
+
  private:
   template <class Delassus>
-  LzbResult run(const Delassus& H, const Eigen::VectorXd& u_minus, ImpactObserver* observer);
+  void kicks(const Delassus& H, ImpactObserver* observer, LzbResult& result);
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
-               std::span<const ContactLaw> laws);
+               const LawTable& laws);
   void drift(Eigen::Index j, double time);
   template <class Delassus>
   void kick(const Delassus& H, Eigen::Index j, double time);
@@ -109,12 +99,12 @@ class LzbAsynchronousIntegrator {
   void notify(ImpactObserver* observer, std::int64_t steps, double time);
 
   LzbOptions options_;
-  std::vector<Law> laws_;
+  const LawConstants* laws_ = nullptr;  // the law table of the impact being integrated
   std::vector<Contact> contacts_;
   std::vector<double> u_;
   std::vector<Step> queue_;  // a binary min-heap on (time, contact)
   double impulse_sum_ = 0.0;
-  ImpactSampler sampler_;
+  Eigen::MatrixXd dense_;  // H, for impacts among few contacts
 };
 
 }  // namespace mimpact::numerics

@@ -12,6 +12,7 @@
 
 #include "mimpact/common/fields.hpp"
 #include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/impact_integrator.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
 
 namespace mimpact::numerics {
@@ -47,8 +48,12 @@ struct LzbOptions {
   std::int64_t max_steps = 1'000'000'000;
   // The observer sees the state every this many steps (0: only at the start and the end).
   std::int64_t sample_every = 0;
-  // Contacts the observer sees; empty means all of them.
+  // Contacts the observer sees (empty: all of them), until set_sampled_contacts changes them.
   std::vector<Eigen::Index> sampled_contacts;
+  // Impacts among at most this many contacts read a dense copy of H, faster than its
+  // compressed columns; larger ones the sparse H, whose steps cost in proportion to the
+  // contacts taking part.
+  Eigen::Index dense_up_to = 16;
 
   // tol_u_j and tol_E_j of a contact whose Delassus diagonal is h_jj (1 / kg)
   double velocity_tolerance(double h_jj) const;
@@ -62,34 +67,8 @@ struct LzbOptions {
     field("max_steps", self.max_steps, at_least(1));
     field("sample_every", self.sample_every, at_least(0, "0: start and end only"));
     field("sampled_contacts", self.sampled_contacts, at_least(0, "contact indices"));
+    field("dense_up_to", self.dense_up_to, within(0, 2147483648.0));
   }
-};
-
-enum class LzbStatus {
-  terminated,  // every contact has come out of the impact
-  step_limit,  // options.max_steps taken before the impact ended
-};
-
-std::string_view to_string(LzbStatus status);
-
-struct LzbResult {
-  LzbStatus status = LzbStatus::terminated;
-  Eigen::VectorXd impulse;            // P_j (N s), cumulated over the impact
-  Eigen::VectorXd velocity;           // post-impact relative velocities u+ = u- + H P (m/s)
-  Eigen::VectorXd max_force;          // largest force of each contact (N)
-  Eigen::VectorXd time_of_max_force;  // when it occurred (s from the start of the impact)
-  double residual_energy = 0.0;       // potential energy below tolerance left at the end (J)
-  // The energy ledger, per contact (J): the work the contact took from the bodies, the integral
-  // of -u_j dP_j, and its potential energy at the end (summing to residual_energy). Their
-  // difference is what the contact dissipated. Summed over the contacts, the work is the
-  // kinetic energy lost, to round-off: each step's work is the trapezoidal rule on u, exact
-  // for the linear dependence of u on P (du = H dP).
-  Eigen::VectorXd work;
-  Eigen::VectorXd stored_energy;
-  std::int64_t steps = 0;          // impulse steps taken
-  std::int64_t contact_steps = 0;  // contacts updated, summed over the steps: the work
-  double duration = 0.0;           // physical duration of the impact (s)
-  std::string message;             // why the impact did not terminate; empty otherwise
 };
 
 // The LZB (Liu-Zhao-Brogliato) multiple-impact law integrated in the principal impulse:
@@ -117,48 +96,41 @@ struct LzbResult {
 // With sparse H the work of a step is proportional to the contacts taking part (about the
 // width of the wave in a chain), not to all contacts. The step loop allocates nothing;
 // buffers are reused from one call to the next.
-class LzbImpulseIntegrator {
+class LzbImpulseIntegrator : public ImpactIntegrator {
  public:
   explicit LzbImpulseIntegrator(LzbOptions options = {});
 
-  // u_minus: pre-impact relative velocities (at least one < 0); laws: one per contact.
-  // Throws InvalidInput (naming the field) on bad input.
-  LzbResult integrate(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-  LzbResult integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-
+  std::string_view name() const override { return "impulse-step"; }
   const LzbOptions& options() const { return options_; }
-  // Changes delta_p for the next impacts; throws InvalidInput unless it is finite and > 0.
-  void set_delta_p(double delta_p);
-  // Changes the contacts the observer sees in the next impacts (empty: all of them).
-  void set_sampled_contacts(std::vector<Eigen::Index> contacts) {
-    options_.sampled_contacts = std::move(contacts);
-  }
+  void set_delta_p(double delta_p) override;
+  // tol_u_j = termination_velocity_factor H_jj delta_p, or the fixed threshold
+  Eigen::VectorXd velocity_resolution(const Eigen::VectorXd& diagonal,
+                                      const Eigen::VectorXd& u_minus) const override;
+
+ protected:
+  void run(const Input& input, ImpactObserver* observer, LzbResult& result) override;
 
  private:
   template <class Delassus>
-  LzbResult run(const Delassus& H, const Eigen::VectorXd& u_minus, std::span<const ContactLaw> laws,
-                ImpactObserver* observer);
+  void step(const Delassus& H, const LawConstants* law, ImpactObserver* observer,
+            LzbResult& result);
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
-               std::span<const ContactLaw> laws);
+               const LawTable& laws);
   void notify(ImpactObserver* observer, std::int64_t step, double time, double principal);
 
   LzbOptions options_;
-  // per contact: law constants
-  std::vector<double> force_coefficient_, force_power_, one_plus_exponent_, inverse_e2_;
-  std::vector<double> tolerance_u_, tolerance_energy_, restitution_;
-  std::unique_ptr<bool[]> mono_stiffness_;  // flag_capacity_ entries, reused
-  std::size_t flag_capacity_ = 0;
+  // per contact: the thresholds of taking part
+  std::vector<double> tolerance_u_, tolerance_energy_;
   // per contact: state
   std::vector<double> u_, u_old_, energy_, impulse_, step_impulse_, force_, force_hat_;
   std::vector<double> impulse_carry_;  // the low-order bits the sum of impulse_ has lost
   std::vector<double> compression_work_, max_force_, time_of_max_, work_;
-  std::unique_ptr<bool[]> in_impact_;
+  std::unique_ptr<bool[]> in_impact_;  // flag_capacity_ entries, reused
+  std::size_t flag_capacity_ = 0;
   std::vector<Eigen::Index> active_;        // contacts taking part, the first ones listed
   std::vector<Eigen::Index> merge_buffer_;  // where contacts that join are merged in order
   std::size_t initially_active_ = 0;        // how many take part at the start
-  ImpactSampler sampler_;
+  Eigen::MatrixXd dense_;                   // H, for impacts among few contacts
 };
 
 }  // namespace mimpact::numerics

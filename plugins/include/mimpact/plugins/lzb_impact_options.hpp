@@ -2,13 +2,16 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 
 #include "mimpact/common/fields.hpp"
+#include "mimpact/numerics/impact_integrator.hpp"
 #include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+#include "mimpact/numerics/lzb_asynchronous_integrator.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::plugins {
@@ -18,14 +21,8 @@ namespace mimpact::plugins {
 // (numerics::LzbAsynchronousIntegrator, for impacts whose loaded contacts far outnumber the
 // front's: packings); or by the adaptive integration of their continuous limit to a tolerance
 // (numerics::LzbAdaptiveIntegrator).
+// Each is registered once, in kImpactIntegrators below.
 enum class LzbIntegrator { impulse_step, asynchronous, adaptive };
-
-constexpr auto enum_names(LzbIntegrator) {
-  using Name = std::pair<LzbIntegrator, std::string_view>;
-  return std::array{Name{LzbIntegrator::impulse_step, "impulse-step"},
-                    Name{LzbIntegrator::asynchronous, "asynchronous"},
-                    Name{LzbIntegrator::adaptive, "adaptive"}};
-}
 
 // The options of the "lzb" impact problem: one value, whether it comes from a scene's "impact",
 // the parameters of a registry, the command line or Python's keyword arguments, checked by one
@@ -50,9 +47,6 @@ struct LzbImpactOptions {
   numerics::LzbOptions impulse_steps;
   // The adaptive integrator's sample_interval (its other options come from the fields above).
   numerics::LzbAdaptiveOptions adaptive;
-  // Impacts among at most this many contacts use a dense H; larger ones a sparse H, whose
-  // steps cost in proportion to the contacts taking part.
-  Eigen::Index dense_up_to = 16;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -69,7 +63,6 @@ struct LzbImpactOptions {
         self.adaptive, [&](std::string_view name, auto& value, auto&&... allowed) {
           if (name == "sample_interval") field(name, value, allowed...);
         });
-    field("dense_up_to", self.dense_up_to, within(0, 2147483648.0));
   }
 
   LzbIntegrator chosen_integrator() const {
@@ -89,5 +82,44 @@ struct LzbImpactOptions {
   // ("impact.delta_p" in a scene, "--delta-p" when the command line gave it).
   void check(std::string_view owner, const fields::Labels& labels = {}) const;
 };
+
+// The registration of the impact integrators, the one place an integrator is named and made: a
+// new one is its class (a numerics::ImpactIntegrator), its value in LzbIntegrator and a row here.
+struct ImpactIntegratorRegistration {
+  LzbIntegrator id;
+  std::string_view name;  // in scenes, on the command line and in Python
+  std::unique_ptr<numerics::ImpactIntegrator> (*make)(const LzbImpactOptions& options);
+};
+
+inline constexpr std::array kImpactIntegrators{
+    ImpactIntegratorRegistration{
+        LzbIntegrator::impulse_step, "impulse-step",
+        [](const LzbImpactOptions& options) -> std::unique_ptr<numerics::ImpactIntegrator> {
+          return std::make_unique<numerics::LzbImpulseIntegrator>(options.impulse_step_options());
+        }},
+    ImpactIntegratorRegistration{
+        LzbIntegrator::asynchronous, "asynchronous",
+        [](const LzbImpactOptions& options) -> std::unique_ptr<numerics::ImpactIntegrator> {
+          return std::make_unique<numerics::LzbAsynchronousIntegrator>(
+              options.impulse_step_options());
+        }},
+    ImpactIntegratorRegistration{
+        LzbIntegrator::adaptive, "adaptive",
+        [](const LzbImpactOptions& options) -> std::unique_ptr<numerics::ImpactIntegrator> {
+          return std::make_unique<numerics::LzbAdaptiveIntegrator>(options.adaptive_options());
+        }},
+};
+
+// The names common/fields.hpp reads and writes LzbIntegrator by.
+constexpr auto enum_names(LzbIntegrator) {
+  using Name = std::pair<LzbIntegrator, std::string_view>;
+  std::array<Name, kImpactIntegrators.size()> names{};
+  for (std::size_t i = 0; i < names.size(); ++i)
+    names[i] = {kImpactIntegrators[i].id, kImpactIntegrators[i].name};
+  return names;
+}
+
+// The integrator the options choose, made with its options.
+std::unique_ptr<numerics::ImpactIntegrator> make_impact_integrator(const LzbImpactOptions& options);
 
 }  // namespace mimpact::plugins

@@ -4,9 +4,7 @@
 
 #include "mimpact/kernel/one_step_ns_problem.hpp"
 #include "mimpact/numerics/delassus.hpp"
-#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
-#include "mimpact/numerics/lzb_asynchronous_integrator.hpp"
-#include "mimpact/numerics/lzb_impulse_integrator.hpp"
+#include "mimpact/numerics/impact_integrator.hpp"
 #include "mimpact/plugins/lzb_impact_options.hpp"
 
 namespace mimpact::plugins {
@@ -36,9 +34,7 @@ class LzbImpactProblem : public kernel::ImpactProblem {
                                 numerics::ImpactObserver* observer);
 
   LzbImpactOptions options_;
-  numerics::LzbImpulseIntegrator impulse_steps_;
-  numerics::LzbAsynchronousIntegrator asynchronous_;
-  numerics::LzbAdaptiveIntegrator adaptive_;
+  std::unique_ptr<numerics::ImpactIntegrator> integrator_;
   std::vector<numerics::ContactLaw> laws_;
   numerics::ImpactObserver* observer_ = nullptr;
 };
