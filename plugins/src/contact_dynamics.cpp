@@ -10,17 +10,7 @@ void ContactDynamics::initialize(const kernel::NonSmoothDynamicalSystem& system)
   system_ = &system;
   blocks_.clear();
   blocks_.resize(std::size_t(system.system_count()));
-  for (Index k = 0; k < system.system_count(); ++k) {
-    MassBlock& block = blocks_[k];
-    block.offset = system.offset(k);
-    block.size = system.system(k).dimension();
-    block.diagonal = system.system(k).mass_is_diagonal();
-    block.constant = system.system(k).mass_is_constant();
-    block.mass.setZero(block.size, block.size);
-    block.q.setZero(block.size);
-    block.v.setZero(block.size);
-    block.force.setZero(block.size);
-  }
+  for (Index k = 0; k < system.system_count(); ++k) blocks_[std::size_t(k)].describe(system, k);
   geometry_constant_ = true;
   for (Index j = 0; j < system.interaction_count(); ++j)
     geometry_constant_ = geometry_constant_ && system.interaction(j).relation().is_linear();
@@ -32,19 +22,10 @@ void ContactDynamics::initialize(const kernel::NonSmoothDynamicalSystem& system)
 
 void ContactDynamics::factorize_masses(const VectorXd& q) {
   for (Index k = 0; k < Index(blocks_.size()); ++k) {
-    MassBlock& block = blocks_[k];
+    internal::MassBlock& block = blocks_[std::size_t(k)];
     if (block.constant && block.factorized) continue;
     block.q = q.segment(block.offset, block.size);
-    system_->system(k).mass(block.q, block.mass);
-    if (block.diagonal) {
-      block.inverse_diagonal = block.mass.diagonal().cwiseInverse();
-    } else {
-      block.cholesky.compute(block.mass);
-      if (block.cholesky.info() != Eigen::Success)
-        throw Error("system '" + system_->system(k).name() +
-                    "': M(q) stopped being positive definite during the motion");
-    }
-    block.factorized = true;
+    block.refresh(system_->system(k), block.q);
     // M^-1 W_S depends on this mass
     set_valid_ = set_valid_ && block.constant;
     inverse_mass_valid_ = inverse_mass_valid_ && block.constant;
@@ -53,7 +34,7 @@ void ContactDynamics::factorize_masses(const VectorXd& q) {
 
 void ContactDynamics::assemble_inverse_mass() {
   std::vector<Eigen::Triplet<double>> entries;
-  for (const MassBlock& block : blocks_) {
+  for (const internal::MassBlock& block : blocks_) {
     if (block.diagonal) {
       for (Index i = 0; i < block.size; ++i)
         entries.emplace_back(block.offset + i, block.offset + i, block.inverse_diagonal(i));
@@ -116,7 +97,7 @@ void ContactDynamics::evaluate(double t, const VectorXd& q, const VectorXd& v,
                                std::span<const Index> set) {
   factorize_masses(q);
   for (Index k = 0; k < Index(blocks_.size()); ++k) {
-    MassBlock& block = blocks_[k];
+    internal::MassBlock& block = blocks_[std::size_t(k)];
     auto a = free_acceleration_.segment(block.offset, block.size);
     if (!system_->system(k).has_force()) {
       a.setZero();
@@ -125,12 +106,8 @@ void ContactDynamics::evaluate(double t, const VectorXd& q, const VectorXd& v,
     block.q = q.segment(block.offset, block.size);
     block.v = v.segment(block.offset, block.size);
     system_->system(k).force(t, block.q, block.v, block.force);
-    if (block.diagonal) {
-      a = block.inverse_diagonal.cwiseProduct(block.force);
-    } else {
-      a = block.force;
-      block.cholesky.solveInPlace(a);
-    }
+    a = block.force;
+    block.apply_inverse(a);
   }
   if (set.empty()) return;
   assemble_set(q, set);
@@ -188,14 +165,8 @@ void ContactDynamics::add_mobility_times(const VectorXd& x, VectorXd& out) const
 }
 
 void ContactDynamics::apply_inverse_mass(VectorXd& x) const {
-  for (const MassBlock& block : blocks_) {
-    auto segment = x.segment(block.offset, block.size);
-    if (block.diagonal) {
-      segment = segment.cwiseProduct(block.inverse_diagonal);
-    } else {
-      block.cholesky.solveInPlace(segment);
-    }
-  }
+  for (const internal::MassBlock& block : blocks_)
+    block.apply_inverse(x.segment(block.offset, block.size));
 }
 
 }  // namespace mimpact::plugins

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
+#include "mimpact/plugins/internal/mass_block.hpp"
 
 namespace mimpact::plugins {
 
@@ -54,15 +55,7 @@ class ContactDynamics {
   void factorize_H();
 
   const kernel::NonSmoothDynamicalSystem* system_ = nullptr;
-  struct MassBlock {
-    Index offset = 0, size = 0;
-    bool diagonal = false, constant = false, factorized = false;
-    VectorXd inverse_diagonal;
-    Eigen::LLT<MatrixXd> cholesky;
-    MatrixXd mass;  // workspaces, so that evaluate() allocates nothing
-    VectorXd q, v, force;
-  };
-  std::vector<MassBlock> blocks_;
+  std::vector<internal::MassBlock> blocks_;
   bool geometry_constant_ = true;  // every relation linear
   bool dense_ = false;             // at most kDenseUpTo coordinates
   VectorXd free_acceleration_, b_, lambda_;

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,9 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   void take_step();
   // the earliest contact event in [a, b] of the current step, if any
   bool next_event(double a, double b, Event& event);
+  // gaps (m) and rates (m/s) of `contacts` at time t of the current step
+  void measure(double t, std::span<const kernel::Index> contacts, std::vector<double>& gap,
+               std::vector<double>& rate);
   // the earliest join computed between bodies in free flight in [a, b], if any
   bool next_predicted_join(double a, double b, Event& event);
   // moves to `end` in the current step: the joined contacts' forces and largest forces
@@ -107,8 +111,8 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   // the body's state now into the system
   void write_back(kernel::Index body);
 
-  // who takes part: the integrated state folded into the bodies' anchors, bodies set in
-  // motion or in free flight, and the integration restarted on the new set
+  // who takes part (compliant_motion.cpp): the integrated state folded into the bodies' anchors,
+  // bodies set in motion or in free flight, and the integration restarted on the new set
   void commit_motion();
   void set_in_motion(kernel::Index body);
   void fold_flight(kernel::Index body);
@@ -120,6 +124,7 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   void restart();
 
   void evaluate(double t, const double* y, double* dydt);
+  // the laws and the ledger (compliant_ledger.cpp)
   double contact_force(std::size_t j, double delta) const;
   // the potential energy of contact j at overlap delta (J), on its loading or unloading curve
   double contact_energy(std::size_t j, double delta) const;

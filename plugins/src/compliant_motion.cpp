@@ -1,0 +1,217 @@
+#include <algorithm>
+
+#include "compliant_state.hpp"
+
+// The moving-body set of the compliant integrator (docs/model.md, section 11): which bodies are
+// integrated and which fly freely, the contacts that join and leave, the joins computed in
+// closed form between bodies in free flight, and the restart of the integration on a new set.
+namespace mimpact::plugins {
+
+using compliant::Body;
+using compliant::Contact;
+using compliant::GapSamples;
+using compliant::JacobianEntry;
+using kernel::Index;
+
+void CompliantIntegrator::commit_motion() {
+  State& s = *state_;
+  for (Index k : s.moving) {
+    Body& b = s.body(k);
+    for (Index i = 0; i < b.size; ++i) {
+      const double d = s.y[std::size_t(b.slot + i)];
+      s.anchor_q(b.offset + i) += d;
+      s.anchor_v(b.offset + i) = s.y[std::size_t(s.moving_coordinates + b.slot + i)];
+      if (!s.linear || d == 0.0) continue;
+      for (Index j : system_->interactions_of(k))
+        for (const JacobianEntry& entry : s.contact(j).entries)
+          if (entry.body == k && entry.local == i) s.contact(j).anchor_gap += entry.value * d;
+    }
+    b.anchor_time = time_;
+  }
+  const std::size_t impulses = 2 * std::size_t(s.moving_coordinates);
+  for (Index j : s.joined) {
+    Contact& c = s.contact(j);
+    c.impulse += s.y[impulses + std::size_t(c.slot)];
+    history_.impulse(j) = c.impulse;
+  }
+}
+
+void CompliantIntegrator::set_in_motion(Index k) {
+  State& s = *state_;
+  Body& b = s.body(k);
+  if (b.in_motion) return;
+  fold_flight(k);
+  b.in_motion = true;
+  s.moving.push_back(k);
+  for (Index j : system_->interactions_of(k)) forget_prediction(j);
+}
+
+// A body in free flight: its flight up to now folded into its anchor.
+void CompliantIntegrator::fold_flight(Index k) {
+  State& s = *state_;
+  Body& b = s.body(k);
+  if (b.in_motion) return;  // anchored by the last commit
+  for (Index i = 0; i < b.size; ++i) {
+    const double d = s.anchor_v(b.offset + i) * (time_ - b.anchor_time);
+    s.anchor_q(b.offset + i) += d;
+    if (!s.linear || d == 0.0) continue;
+    for (Index j : system_->interactions_of(k))
+      for (const JacobianEntry& entry : s.contact(j).entries)
+        if (entry.body == k && entry.local == i) s.contact(j).anchor_gap += entry.value * d;
+  }
+  b.anchor_time = time_;
+}
+
+void CompliantIntegrator::set_free(Index k) {
+  State& s = *state_;
+  Body& b = s.body(k);
+  if (!b.in_motion || !b.can_fly || b.loaded_contacts > 0) return;
+  b.in_motion = false;
+  std::erase(s.moving, k);
+  for (Index j : system_->interactions_of(k)) predict_join(j);
+}
+
+void CompliantIntegrator::join(Index j) {
+  State& s = *state_;
+  Contact& c = s.contact(j);
+  c.joined = true;
+  c.has_closed = true;
+  s.joined.push_back(j);
+  forget_prediction(j);
+  for (Index k : {system_->first_system(j), system_->second_system(j)})
+    if (k >= 0) {
+      ++s.body(k).loaded_contacts;
+      set_in_motion(k);
+    }
+}
+
+void CompliantIntegrator::leave(Index j) {
+  State& s = *state_;
+  s.contact(j).joined = false;
+  std::erase(s.joined, j);
+  max_compression_[std::size_t(j)] = 0.0;  // the contact forgets
+  history_.force(j) = 0.0;
+  for (Index k : {system_->first_system(j), system_->second_system(j)})
+    if (k >= 0) {
+      --s.body(k).loaded_contacts;
+      set_free(k);
+    }
+}
+
+// Between bodies in free flight the gap is linear in time: the join is where it reaches
+// -join_overlap.
+void CompliantIntegrator::predict_join(Index j) {
+  State& s = *state_;
+  Contact& c = s.contact(j);
+  if (!s.linear || c.joined || c.predicted) return;
+  double gap = c.anchor_gap, rate = 0.0;
+  for (const JacobianEntry& entry : c.entries) {
+    const Body& b = s.body(entry.body);
+    if (b.in_motion) return;  // watched along the integration instead
+    const double v = s.anchor_v(b.offset + entry.local);
+    gap += entry.value * v * (time_ - b.anchor_time);
+    rate += entry.value * v;
+  }
+  if (!(rate < 0.0)) return;
+  if (options_.frozen_gaps && c.has_closed && gap > s.leave_overlap) {
+    c.anchor_gap -= gap;  // it approaches again (turned by a collision): its gap is forgotten
+    gap = 0.0;
+  }
+  const double time = time_ + std::max(0.0, (gap + s.join_overlap) / -rate);
+  s.predictions.push({time, j, c.version});
+  c.predicted = true;
+  ++s.pending_predictions;
+}
+
+void CompliantIntegrator::forget_prediction(Index j) {
+  State& s = *state_;
+  Contact& c = s.contact(j);
+  ++c.version;
+  if (!c.predicted) return;
+  c.predicted = false;
+  --s.pending_predictions;
+}
+
+void CompliantIntegrator::restart() {
+  State& s = *state_;
+  std::sort(s.moving.begin(), s.moving.end());
+  s.moving_coordinates = 0;
+  for (Index k : s.moving) {
+    s.body(k).slot = s.moving_coordinates;
+    s.moving_coordinates += s.body(k).size;
+  }
+  s.most_moving = std::max(s.most_moving, Index(s.moving.size()));
+  for (std::size_t a = 0; a < s.joined.size(); ++a) s.contact(s.joined[a]).slot = Index(a);
+  // y = (displacements, velocities, impulses since now)
+  s.y.assign(2 * std::size_t(s.moving_coordinates) + s.joined.size(), 0.0);
+  for (Index k : s.moving) {
+    const Body& b = s.body(k);
+    for (Index i = 0; i < b.size; ++i)
+      s.y[std::size_t(s.moving_coordinates + b.slot + i)] = s.anchor_v(b.offset + i);
+  }
+  // the contacts the integrated bodies touch
+  ++s.stamp;
+  s.watched.clear();
+  for (Index k : s.moving)
+    for (Index j : system_->interactions_of(k))
+      if (s.watch_stamp[std::size_t(j)] != s.stamp) {
+        s.watch_stamp[std::size_t(j)] = s.stamp;
+        s.watched.push_back(j);
+      }
+  for (GapSamples* samples : {&s.before, &s.after}) {
+    samples->gap.resize(s.watched.size());
+    samples->rate.resize(s.watched.size());
+  }
+  s.generalized.resize(s.moving_coordinates);
+  s.probe = s.y;
+  start_accounting();
+  // after an event, the step the integration last took
+  s.dense.restart(s.y, time_, s.dense.last_step() > 0.0 ? s.dense.last_step() : 1e-7);
+}
+
+// Behind a wave, bodies left at rest against each other approach with speeds of the order of
+// the integration's own errors. Such a collision changes the velocities by less than the
+// tolerance, and its largest overlap lies below what the error control resolves, so that
+// integrating it would only feed those errors (and keep ever more bodies in motion). Slower than
+// relative_tolerance x the fastest initial speed, a collision is therefore taken as
+// instantaneous, u+ = -e u- by the impulse P = -(1 + e) u- / H_jj, the outcome of an isolated
+// pair. Linear relations and constant diagonal masses only; the ledger books its work
+// -(u- + u+) P / 2, exactly what the kinetic energy loses.
+bool CompliantIntegrator::collide_instantly(Index j) {
+  State& s = *state_;
+  Contact& c = s.contact(j);
+  if (!s.linear) return false;
+  double rate = 0.0, h = 0.0;
+  for (const JacobianEntry& entry : c.entries) {
+    Body& b = s.body(entry.body);
+    if (!b.diagonal || !b.constant) return false;
+    if (!b.factorized) {
+      b.q = s.anchor_q.segment(b.offset, b.size);
+      b.refresh(system_->system(entry.body), b.q);
+    }
+    rate += entry.value * s.anchor_v(b.offset + entry.local);
+    h += entry.value * entry.value * b.inverse_diagonal(entry.local);
+  }
+  if (!(rate < 0.0 && -rate < slow_speed_)) return false;
+  for (Index k : {system_->first_system(j), system_->second_system(j)})
+    if (k >= 0) fold_flight(k);
+  const double e = laws_[std::size_t(j)].restitution;
+  const double impulse = -(1.0 + e) * rate / h;
+  for (const JacobianEntry& entry : c.entries) {
+    const Body& b = s.body(entry.body);
+    s.anchor_v(b.offset + entry.local) += b.inverse_diagonal(entry.local) * entry.value * impulse;
+  }
+  c.impulse += impulse;
+  history_.impulse(j) = c.impulse;
+  history_.work(j) -= 0.5 * (rate - e * rate) * impulse;
+  // the velocities changed: the joins of every contact of the two bodies, computed again
+  for (Index k : {system_->first_system(j), system_->second_system(j)})
+    if (k >= 0)
+      for (Index other : system_->interactions_of(k)) {
+        forget_prediction(other);
+        predict_join(other);
+      }
+  return true;
+}
+
+}  // namespace mimpact::plugins

@@ -1,0 +1,148 @@
+#pragma once
+
+// What the parts of the compliant integrator share: the bodies and contacts as the integration
+// sees them, and its state. The parts: compliant_integrator.cpp (the advance: steps, events
+// located and handled), compliant_motion.cpp (the moving-body set: who is integrated, who flies
+// freely, joins computed in closed form), compliant_ledger.cpp (the contact laws' force and
+// energy, the energy ledger); the events' classification is a pure function
+// (mimpact/plugins/internal/contact_events.hpp).
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <vector>
+
+#include "mimpact/numerics/internal/dense_output.hpp"
+#include "mimpact/plugins/compliant_integrator.hpp"
+#include "mimpact/plugins/internal/contact_events.hpp"
+#include "mimpact/plugins/internal/mass_block.hpp"
+
+namespace mimpact::plugins {
+namespace compliant {
+
+using kernel::Index;
+using kernel::MatrixXd;
+using kernel::VectorXd;
+
+constexpr double kNever = std::numeric_limits<double>::infinity();
+
+// A body of the system: its mass block and how it moves now. Out of the motion it flies
+// freely, q(t) = anchor_q + anchor_v (t - anchor_time); in it, its displacement from anchor_q and
+// its velocity are part of the integrated state, from slot on.
+struct Body : internal::MassBlock {
+  bool can_fly = false;  // no force, a constant mass, only linear relations
+  bool has_force = false;
+  bool in_motion = false;
+  Index slot = -1;
+  double anchor_time = 0.0;
+  int loaded_contacts = 0;  // joined contacts touching it
+};
+
+// W_j entry of a linear relation: coordinate `local` of `body`.
+struct JacobianEntry {
+  Index body = 0, local = 0;
+  double value = 0.0;
+};
+
+struct Contact {
+  std::vector<JacobianEntry> entries;  // linear relations: constant
+  double anchor_gap = 0.0;             // linear relations: the gap at the bodies' anchors (m)
+  bool joined = false;
+  // closed at the start or joined since: a gap it has opened since may be frozen
+  bool has_closed = false;
+  Index slot = -1;       // of its impulse in the integrated state
+  double impulse = 0.0;  // N s, until the last commit
+  // where its work was last accounted: the impulse since the last restart (N s) and u (m/s)
+  double accounted_impulse = 0.0, accounted_rate = 0.0;
+  std::uint32_t version = 0;  // invalidates its pending join prediction
+  bool predicted = false;
+};
+
+// A join computed in closed form, between bodies in free flight.
+struct PredictedJoin {
+  double time;
+  Index contact;
+  std::uint32_t version;
+  bool operator>(const PredictedJoin& other) const { return time > other.time; }
+};
+
+// Gaps (m) and rates (m/s) of the watched contacts at one time.
+struct GapSamples {
+  std::vector<double> gap, rate;
+};
+
+}  // namespace compliant
+
+struct CompliantIntegrator::State {
+  using Index = kernel::Index;
+  using VectorXd = kernel::VectorXd;
+
+  explicit State(const numerics::OdeOptions& options) : dense(options) {}
+
+  numerics::internal::DenseOutput dense;
+  numerics::internal::DenseOutput::State y, probe;
+  bool linear = true;
+  double join_overlap = 0.0, leave_overlap = 0.0;  // m
+  std::vector<compliant::Body> bodies;
+  std::vector<compliant::Contact> contacts;
+  VectorXd anchor_q, anchor_v;  // global coordinates
+  std::vector<Index> body_of_coordinate, local_of_coordinate;
+  // the motion: its bodies, its joined contacts, the contacts watched for events
+  std::vector<Index> moving, joined, watched;
+  Index moving_coordinates = 0, most_moving = 0;
+  std::vector<std::uint32_t> watch_stamp;
+  std::uint32_t stamp = 0;
+  std::priority_queue<compliant::PredictedJoin, std::vector<compliant::PredictedJoin>,
+                      std::greater<>>
+      predictions;
+  Index pending_predictions = 0;
+  // the contact of the event handled last: its crossing, seen again at the start of the next
+  // segment through round-off of the restarted state, is not an event
+  Index last_event = -1;
+  // right-hand side workspace
+  VectorXd generalized;
+  VectorXd q_all, v_all;  // nonlinear relations: every coordinate
+  compliant::GapSamples before, after;
+  std::vector<double> event_gap, event_rate;
+  std::vector<double> gap_now;  // m, of the joined contacts at the end of the last segment
+  // the moving coordinates' velocities and the time where the forces' work was last accounted
+  std::vector<double> accounted_velocity;
+  double accounted_time = 0.0;
+
+  compliant::Body& body(Index k) { return bodies[std::size_t(k)]; }
+  compliant::Contact& contact(Index j) { return contacts[std::size_t(j)]; }
+
+  // displacement from the anchor and velocity of coordinate `local` of body k at time t, with
+  // the integrated state y
+  double displacement(const compliant::Body& b, Index local, double t, const double* state) const {
+    return b.in_motion ? state[b.slot + local] : anchor_v(b.offset + local) * (t - b.anchor_time);
+  }
+  double velocity(const compliant::Body& b, Index local, const double* state) const {
+    return b.in_motion ? state[moving_coordinates + b.slot + local] : anchor_v(b.offset + local);
+  }
+};
+
+struct CompliantIntegrator::Event {
+  kernel::Index contact = -1;
+  internal::ContactEvent kind = internal::ContactEvent::none;
+  double time = 0.0;
+};
+
+namespace compliant {
+
+// Gap and rate of contact j along the integrated state y at time t.
+template <class StateT>
+void linear_gap(const StateT& s, const Contact& c, double t, const double* y, double& gap,
+                double& rate) {
+  gap = c.anchor_gap;
+  rate = 0.0;
+  for (const JacobianEntry& entry : c.entries) {
+    const Body& b = s.bodies[std::size_t(entry.body)];
+    gap += entry.value * s.displacement(b, entry.local, t, y);
+    rate += entry.value * s.velocity(b, entry.local, y);
+  }
+}
+
+}  // namespace compliant
+}  // namespace mimpact::plugins
