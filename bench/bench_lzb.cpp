@@ -7,7 +7,7 @@
 #include "mimpact/chains/chain_impact.hpp"
 #include "mimpact/chains/chain_model.hpp"
 #include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace {
 
@@ -48,7 +48,7 @@ chains::ChainModel c1_model() {
 double c1_velocity_error(const Eigen::VectorXd& velocity) {
   static const Eigen::VectorXd exact = [] {
     const chains::ChainModel model = c1_model();
-    chains::CompliantSpec spec;
+    granular::CompliantSpec spec;
     spec.tolerance = 1e-12;
     return chains::simulate_chain_compliant(model, spec, {}).impact.velocity_after;
   }();
@@ -57,7 +57,7 @@ double c1_velocity_error(const Eigen::VectorXd& velocity) {
 
 void c1_through_kernel(benchmark::State& state, const plugins::LzbImpactOptions& options) {
   const chains::ChainModel model = c1_model();
-  chains::ImpactOutcome impact;
+  granular::ImpactOutcome impact;
   for (auto _ : state) {
     impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
@@ -95,7 +95,7 @@ void BM_ChainLengthAdaptive(benchmark::State& state) {
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
   options.tolerance = 1e-6;
-  chains::ImpactOutcome impact;
+  granular::ImpactOutcome impact;
   for (auto _ : state) {
     impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
@@ -112,10 +112,10 @@ BENCHMARK(BM_ChainLengthAdaptive)
 
 void BM_ChainLengthCompliant(benchmark::State& state) {
   const chains::ChainModel model = c1_like_chain(int(state.range(0)));
-  chains::CompliantSpec spec;
+  granular::CompliantSpec spec;
   spec.tolerance = 1e-6;
   spec.end_time = 2e-4 + 3.2e-5 * double(state.range(0));
-  chains::CompliantRun run;
+  granular::CompliantRun run;
   for (auto _ : state) {
     run = chains::simulate_chain_compliant(model, spec, {});
     benchmark::DoNotOptimize(run.impact.velocity_after.data());

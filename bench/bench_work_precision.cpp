@@ -22,7 +22,7 @@
 #include "mimpact/chains/chain_impact.hpp"
 #include "mimpact/chains/chain_model.hpp"
 #include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace {
 
@@ -43,12 +43,12 @@ struct Case {
   std::vector<double> shares;  // delta_p / (m V) of the LZB runs
 };
 
-Outcome outcome_of(const chains::ImpactOutcome& impact) {
+Outcome outcome_of(const granular::ImpactOutcome& impact) {
   return {impact.velocity_after, impact.lzb.max_force, impact.lzb.steps};
 }
 
 Outcome run_lzb(const Case& c, const chains::ChainModel& model, double share) {
-  const double delta_p = share * chains::natural_impulse(model);
+  const double delta_p = share * granular::natural_impulse(model);
   numerics::LzbOptions options = c.scene.impact.impulse_step_options();
   options.delta_p = delta_p;
   return outcome_of(chains::simulate_chain_impact(model, options));
@@ -62,7 +62,7 @@ Outcome run_adaptive(const chains::ChainModel& model, double tolerance) {
 }
 
 Outcome run_compliant(const Case& c, const chains::ChainModel& model, double tolerance) {
-  chains::CompliantSpec spec = c.scene.compliant;
+  granular::CompliantSpec spec = c.scene.compliant;
   spec.tolerance = tolerance;
   return outcome_of(chains::simulate_chain_compliant(model, spec, {}).impact);
 }

@@ -65,7 +65,7 @@ std::string method_line(const chains::ChainScene& scene, std::optional<double> d
 }
 
 // summary.json on stdout, or with the time series into `out`, complete or not at all.
-void write_results(const nlohmann::ordered_json& summary, const chains::TimeSeries* series,
+void write_results(const nlohmann::ordered_json& summary, const granular::TimeSeries* series,
                    const std::filesystem::path& out) {
   if (out.empty()) {
     std::cout << summary.dump(2) << "\n";
@@ -83,7 +83,7 @@ void write_results(const nlohmann::ordered_json& summary, const chains::TimeSeri
 
 int chain_command(const std::vector<std::string>& arguments) {
   std::string scene_file, out_dir;
-  chains::RunLimits limits;
+  granular::RunLimits limits;
   std::vector<double> tolerance;
   po::options_description visible(
       "mimpact chain SCENE.json: the multiple impact of a granular chain");
@@ -108,10 +108,10 @@ int chain_command(const std::vector<std::string>& arguments) {
 
   chains::ChainScene scene = chains::load_chain_scene(scene_file);
   const chains::ChainModel model = chains::build_chain_model(scene, limits);
-  chains::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
+  granular::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
   if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
-  scene.impact = chains::resolve_impact(scene.impact, scene.method, overrides, scene_file);
-  const bool lzb = scene.method == chains::Method::lzb;
+  scene.impact = granular::resolve_impact(scene.impact, scene.method, overrides, scene_file);
+  const bool lzb = scene.method == granular::Method::lzb;
   std::optional<analysis::ConvergenceStudy> study;
   std::optional<analysis::ToleranceStudy> tolerance_study;
   if (!tolerance.empty() && !overrides.delta_p && chains::uses_tolerance_study(scene)) {
@@ -148,8 +148,8 @@ int chain_command(const std::vector<std::string>& arguments) {
 
   if (lzb && !scene.adaptive()) {  // refused before it is warned of
     const double delta_p =
-        chains::impulse_step(model, scene.impact, chains::impact_labels(overrides));
-    warn_if_coarse(delta_p, chains::natural_impulse(model), quiet);
+        granular::impulse_step(model, scene.impact, granular::impact_labels(overrides));
+    warn_if_coarse(delta_p, granular::natural_impulse(model), quiet);
   }
   ProgressReporter progress;
   chains::ChainRunOptions run_options;
@@ -157,8 +157,8 @@ int chain_command(const std::vector<std::string>& arguments) {
   run_options.limits = limits;
   run_options.progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr;
   chains::ChainRun run = chains::run_chain_scene(scene, model, run_options);
-  const chains::ImpactOutcome& impact = run.impact;
-  const chains::TimeSeries& series = run.series;
+  const granular::ImpactOutcome& impact = run.impact;
+  const granular::TimeSeries& series = run.series;
   nlohmann::ordered_json summary = chains::run_summary(model, run);
   if (study) summary["convergence"] = chains::convergence_json(*study);
   if (tolerance_study) summary["convergence"] = chains::tolerance_json(*tolerance_study);

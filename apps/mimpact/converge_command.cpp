@@ -14,7 +14,7 @@ namespace po = boost::program_options;
 int converge_command(const std::vector<std::string>& arguments) {
   std::string scene_file;
   int halvings = 12;
-  chains::RunLimits limits;
+  granular::RunLimits limits;
   std::vector<double> tolerance;
   po::options_description visible(
       "mimpact converge SCENE.json: delta_p = h, h/2, h/4, ... until the LZB impact converges "

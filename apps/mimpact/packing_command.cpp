@@ -36,7 +36,7 @@ std::map<std::string, std::string> output_files(const nlohmann::ordered_json& su
 
 int packing_command(const std::vector<std::string>& arguments) {
   std::string scene_file, out_dir;
-  chains::RunLimits limits;
+  granular::RunLimits limits;
   po::options_description visible(
       "mimpact packing SCENE.json: the multiple impact of a planar packing of beads");
   visible.add_options()(
@@ -59,7 +59,7 @@ int packing_command(const std::vector<std::string>& arguments) {
   packings::PackingScene scene = packings::load_packing_scene(scene_file);
   if (values.count("data-dir")) scene.directory = values["data-dir"].as<std::string>();
   const packings::PackingModel model = packings::build_packing_model(scene, limits);
-  chains::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
+  granular::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
   if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
   const bool recording =
       !scene.record.contacts.empty() || !scene.record.beads.empty() || scene.record.frames > 0;

@@ -31,7 +31,7 @@ void check_rows(const StudyRequest& request) {
 }
 
 void check_lzb(const ChainScene& scene) {
-  if (scene.method != Method::lzb)
+  if (scene.method != granular::Method::lzb)
     throw InvalidInput(
         "the convergence study runs the LZB method over delta_p or its tolerance; the scene has "
         "method \"compliant\"");
@@ -40,7 +40,7 @@ void check_lzb(const ChainScene& scene) {
 }  // namespace
 
 bool uses_tolerance_study(const ChainScene& scene) {
-  return scene.adaptive() || (scene.method == Method::lzb && !scene.impact.delta_p &&
+  return scene.adaptive() || (scene.method == granular::Method::lzb && !scene.impact.delta_p &&
                               !scene.impact.relative_delta_p && !scene.impact.integrator);
 }
 
@@ -75,10 +75,10 @@ analysis::ConvergenceOptions convergence_options(const ChainScene& scene, const 
   options.first_delta_p = request.first    ? *request.first
                           : impact.delta_p ? *impact.delta_p
                           : impact.relative_delta_p
-                              ? *impact.relative_delta_p * contact_impulse(model)
-                              : 1e-3 * natural_impulse(model);
-  check_delta_p(model, options.first_delta_p, impact.impulse_steps.max_steps,
-                request.first ? request.first_name : "impact.delta_p");
+                              ? *impact.relative_delta_p * granular::contact_impulse(model)
+                              : 1e-3 * granular::natural_impulse(model);
+  granular::check_delta_p(model, options.first_delta_p, impact.impulse_steps.max_steps,
+                          request.first ? request.first_name : "impact.delta_p");
   read_tolerance(request, options.epsilon_plus, options.epsilon);
   check_rows(request);
   options.max_halvings = request.max_rows;

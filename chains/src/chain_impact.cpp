@@ -6,15 +6,15 @@
 #include <map>
 
 #include "mimpact/analysis/pulse_analysis.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::chains {
 
 // Pulses of the recorded contacts and wave speeds through beads with both contacts recorded.
 // In a precompressed chain a pulse is the force beyond the static one, as Coste, Falcon &
 // Fauve (1997) measure it.
-void add_pulses(const ChainModel& model, const TimeSeries& series,
+void add_pulses(const ChainModel& model, const granular::TimeSeries& series,
                 nlohmann::ordered_json& summary) {
   using json = nlohmann::ordered_json;
   json pulses = json::array();
@@ -53,42 +53,34 @@ void add_pulses(const ChainModel& model, const TimeSeries& series,
   summary["wave_speeds"] = speeds;
 }
 
-ImpactOutcome simulate_chain_impact(const ChainModel& model, const numerics::LzbOptions& options,
-                                    numerics::ImpactObserver* observer) {
+granular::ImpactOutcome simulate_chain_impact(const ChainModel& model,
+                                              const numerics::LzbOptions& options,
+                                              numerics::ImpactObserver* observer) {
   return simulate_chain_impact(
       model, plugins::LzbImpactOptions{.delta_p = options.delta_p, .impulse_steps = options},
       observer);
 }
 
-ImpactOutcome simulate_chain_impact(const ChainModel& model,
-                                    const plugins::LzbImpactOptions& options,
-                                    numerics::ImpactObserver* observer) {
-  return simulate_impacts(model, build_chain_system(model), options, observer);
+granular::ImpactOutcome simulate_chain_impact(const ChainModel& model,
+                                              const plugins::LzbImpactOptions& options,
+                                              numerics::ImpactObserver* observer) {
+  return granular::simulate_impacts(model, build_chain_system(model), options, observer);
 }
 
-ImpactOutcome simulate_chain_impact_numerics(const ChainModel& model,
-                                             const numerics::LzbOptions& options,
-                                             numerics::ImpactObserver* observer) {
-  return simulate_impact_numerics(model, options, observer);
+granular::ImpactOutcome simulate_chain_impact_numerics(const ChainModel& model,
+                                                       const numerics::LzbOptions& options,
+                                                       numerics::ImpactObserver* observer) {
+  return granular::simulate_impact_numerics(model, options, observer);
 }
 
-CompliantRun simulate_chain_compliant(const ChainModel& model, const CompliantSpec& spec,
-                                      const RecordSpec& record) {
-  return simulate_compliant(model, build_chain_system(model), spec, record);
+granular::CompliantRun simulate_chain_compliant(const ChainModel& model,
+                                                const granular::CompliantSpec& spec,
+                                                const granular::RecordSpec& record) {
+  return granular::simulate_compliant(model, build_chain_system(model), spec, record);
 }
-nlohmann::ordered_json ledger_json(const EnergyLedger& ledger) {
-  const Eigen::VectorXd& d = ledger.dissipated;
-  return {{"kinetic_before", ledger.kinetic_before},
-          {"potential_before", ledger.potential_before},
-          {"work_of_forces", ledger.work_of_forces},
-          {"kinetic_after", ledger.kinetic_after},
-          {"dissipated", std::vector<double>(d.data(), d.data() + d.size())},
-          {"dissipated_total", ledger.dissipated_total},
-          {"potential_left", ledger.potential_left}};
-}
-
-nlohmann::ordered_json chain_summary(const ChainModel& model, const ImpactOutcome& impact,
-                                     std::optional<double> delta_p, const TimeSeries* series) {
+nlohmann::ordered_json chain_summary(const ChainModel& model, const granular::ImpactOutcome& impact,
+                                     std::optional<double> delta_p,
+                                     const granular::TimeSeries* series) {
   using json = nlohmann::ordered_json;
   json contacts = json::array();
   for (Eigen::Index i = 0; i < model.contact_count(); ++i)
@@ -106,12 +98,12 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const ImpactOutcom
       {"impact_time", impact.impact_time},
       {"impact_duration", impact.lzb.duration},
       {"kinetic_energy",
-       {{"before", kinetic_energy(model, model.velocity)},
-        {"after", kinetic_energy(model, after)},
+       {{"before", granular::kinetic_energy(model, model.velocity)},
+        {"after", granular::kinetic_energy(model, after)},
         {"residual_potential", impact.lzb.residual_energy}}},
       {"momentum",
        {{"before", momentum(model, model.velocity)}, {"after", momentum(model, after)}}},
-      {"energy", ledger_json(energy_ledger(model, impact))},
+      {"energy", granular::ledger_json(granular::energy_ledger(model, impact))},
       {"wall_time", impact.wall_time},
       {"contacts", contacts}};
   if (series) add_pulses(model, *series, summary);
@@ -155,10 +147,10 @@ std::string velocity_lines(const Eigen::VectorXd& velocity) {
 
 }  // namespace
 
-std::string chain_report(const ChainModel& model, const ImpactOutcome& impact,
+std::string chain_report(const ChainModel& model, const granular::ImpactOutcome& impact,
                          const std::string& method) {
-  const double energy_before = kinetic_energy(model, model.velocity);
-  const double energy_after = kinetic_energy(model, impact.velocity_after);
+  const double energy_before = granular::kinetic_energy(model, model.velocity);
+  const double energy_after = granular::kinetic_energy(model, impact.velocity_after);
   char line[256];
   std::string report;
   std::snprintf(line, sizeof line, "%lld bodies, %lld contacts, ", (long long)model.body_count(),

@@ -15,7 +15,7 @@ namespace {
 
 struct Body {
   double radius;
-  Material material;
+  granular::Material material;
   double velocity;
 };
 
@@ -64,9 +64,10 @@ void precompress(ChainModel& model, const ChainScene& scene) {
 
 }  // namespace
 
-ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits) {
-  check_memory(model_bytes(scene.body_count(), scene.contact_count(), 1),
-               "chain.segments (" + std::to_string(scene.bead_count()) + " beads)", limits);
+ChainModel build_chain_model(const ChainScene& scene, const granular::RunLimits& limits) {
+  granular::check_memory(granular::model_bytes(scene.body_count(), scene.contact_count(), 1),
+                         "chain.segments (" + std::to_string(scene.bead_count()) + " beads)",
+                         limits);
   const std::vector<Body> bodies = bodies_of(scene);
   const Eigen::Index n = Eigen::Index(bodies.size());
   ChainModel model;
@@ -76,7 +77,7 @@ ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits) {
   model.velocity.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     model.radius(i) = bodies[i].radius;
-    model.mass(i) = bead_mass(bodies[i].radius, bodies[i].material);
+    model.mass(i) = granular::bead_mass(bodies[i].radius, bodies[i].material);
     model.velocity(i) = bodies[i].velocity;
     // valid fields can still multiply out of double's range: a long steep taper, a tiny radius
     if (!(model.mass(i) > 0.0 && std::isfinite(model.mass(i))))
@@ -106,15 +107,15 @@ ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits) {
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
     gradients.emplace_back(i, i, -1.0);
     gradients.emplace_back(i + 1, i, 1.0);
-    add_law(hertz_stiffness(bodies[i].radius, bodies[i].material, bodies[i + 1].radius,
-                            bodies[i + 1].material));
+    add_law(granular::hertz_stiffness(bodies[i].radius, bodies[i].material, bodies[i + 1].radius,
+                                      bodies[i + 1].material));
   }
   if (scene.wall) {
     model.has_wall = true;
     model.wall_position = model.position(n - 1) + model.radius(n - 1);
     gradients.emplace_back(n - 1, n - 1, -1.0);
-    add_law(
-        hertz_stiffness_wall(bodies[n - 1].radius, bodies[n - 1].material, scene.wall->material));
+    add_law(granular::hertz_stiffness_wall(bodies[n - 1].radius, bodies[n - 1].material,
+                                           scene.wall->material));
   }
   model.first_bead = first_bead;
   if (scene.precompression > 0.0) precompress(model, scene);
@@ -122,7 +123,7 @@ ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits) {
   model.W.setFromTriplets(gradients.begin(), gradients.end());
   model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
   model.u_minus = model.W.transpose() * model.velocity;
-  check_impact_scales(model);
+  granular::check_impact_scales(model);
   return model;
 }
 

@@ -27,10 +27,11 @@ ChainRun run_lzb(const ChainScene& scene, const ChainModel& model, const ChainRu
                  plugins::LzbImpactOptions impact, bool record) {
   ChainRun run;
   if (!scene.adaptive()) {
-    const double delta_p = impulse_step(model, impact, impact_labels(options.impact));
+    const double delta_p =
+        granular::impulse_step(model, impact, granular::impact_labels(options.impact));
     if (impact.delta_p) run.delta_p = delta_p;
   }
-  ImpactRecorder recorder(model, scene.record, 0, options.limits);
+  granular::ImpactRecorder recorder(model, scene.record, 0, options.limits);
   Observers observers;
   if (record) {
     recorder.configure(impact);
@@ -54,13 +55,13 @@ ChainRun run_chain_scene(const ChainScene& scene, const ChainModel& model,
   const bool record =
       options.record && (!scene.record.contacts.empty() || !scene.record.bodies.empty());
   const plugins::LzbImpactOptions impact =
-      resolve_impact(scene.impact, scene.method, options.impact, scene.source);
-  if (scene.method == Method::lzb) return run_lzb(scene, model, options, impact, record);
-  CompliantRun compliant =
-      simulate_compliant(model, build_chain_system(model), scene.compliant,
-                         record ? scene.record : RecordSpec{}, 0, options.limits);
+      granular::resolve_impact(scene.impact, scene.method, options.impact, scene.source);
+  if (scene.method == granular::Method::lzb) return run_lzb(scene, model, options, impact, record);
+  granular::CompliantRun compliant = granular::simulate_compliant(
+      model, build_chain_system(model), scene.compliant,
+      record ? scene.record : granular::RecordSpec{}, 0, options.limits);
   ChainRun run;
-  run.method = Method::compliant;
+  run.method = granular::Method::compliant;
   run.impact = std::move(compliant.impact);
   run.series = std::move(compliant.series);
   run.recorded = record;
@@ -71,7 +72,7 @@ nlohmann::ordered_json run_summary(const ChainModel& model, const ChainRun& run)
   nlohmann::ordered_json summary =
       chain_summary(model, run.impact, run.delta_p, run.recorded ? &run.series : nullptr);
   summary["method"] = std::string(enum_name(run.method));
-  if (run.method != Method::lzb) return summary;
+  if (run.method != granular::Method::lzb) return summary;
   summary["integrator"] = std::string(enum_name(run.options.chosen_integrator()));
   if (run.options.relative_delta_p) summary["relative_delta_p"] = *run.options.relative_delta_p;
   if (run.options.chosen_integrator() == plugins::LzbIntegrator::adaptive)

@@ -18,7 +18,7 @@ int main() {
           "impact": {"delta_p": 1e-6}})",
       "inline scene");
   const chains::ChainModel model = chains::build_chain_model(scene);
-  const chains::ImpactOutcome impact = chains::simulate_chain_impact(model, scene.impact);
+  const granular::ImpactOutcome impact = chains::simulate_chain_impact(model, scene.impact);
   std::printf("%s\n", chains::chain_summary(model, impact, scene.impact.delta_p).dump(2).c_str());
   const double before = chains::momentum(model, model.velocity);
   const double after = chains::momentum(model, impact.velocity_after);

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "mimpact/chains/run_limits.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/run_limits.hpp"
 #include "mimpact/kernel/json_document.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
@@ -32,7 +32,7 @@ using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
 struct Body {
   Eigen::Vector2d centre;
   double radius;
-  chains::Material material;
+  granular::Material material;
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
 };
 
@@ -58,7 +58,7 @@ std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
 }
 
 // The memory a bead takes with its contacts (a bead touches 3 others on average in the plane)
-double bead_bytes() { return chains::model_bytes(1.0, 3.0, 2); }
+double bead_bytes() { return granular::model_bytes(1.0, 3.0, 2); }
 
 // The bead list's file: inside `directory` (the scene's, or --data-dir), a regular file. Its
 // path is the scene's, so messages may name it; its content is never echoed.
@@ -96,7 +96,7 @@ std::optional<double> number_of(std::string cell) {
 // "x,y,radius" then one bead per line. Messages name the line and column, never their content
 // (a scene from elsewhere must not make mimpact show a file's lines).
 std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory,
-                               const chains::RunLimits& limits) {
+                               const granular::RunLimits& limits) {
   const std::filesystem::path path = bead_file(list, directory);
   std::ifstream in(path);
   if (!in) throw InvalidInput("beads.file: cannot open " + path.string() + " for reading");
@@ -128,9 +128,9 @@ std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::
     if (!(values[2] > 0.0)) fail(number, invalid_value_message("radius", values[2], "> 0 (m)"));
     beads.push_back({{values[0], values[1]}, values[2], list.material});
     if (beads.size() % 100'000 == 0)
-      chains::check_memory(double(beads.size()) * bead_bytes(),
-                           "beads.file (" + std::to_string(beads.size()) + " beads so far)",
-                           limits);
+      granular::check_memory(double(beads.size()) * bead_bytes(),
+                             "beads.file (" + std::to_string(beads.size()) + " beads so far)",
+                             limits);
   }
   if (beads.empty())
     throw InvalidInput(path.string() + ": the bead list is empty; allowed: at least one bead");
@@ -155,12 +155,12 @@ void near(const Tree& tree, const Eigen::Vector2d& centre, double reach, Visit&&
 
 class PackingBuilder {
  public:
-  PackingBuilder(const PackingScene& scene, PackingModel& model, const chains::RunLimits& limits)
+  PackingBuilder(const PackingScene& scene, PackingModel& model, const granular::RunLimits& limits)
       : scene_(scene), model_(model), limits_(limits) {}
 
   void build() {
     if (scene_.lattice)
-      chains::check_memory(
+      granular::check_memory(
           double(scene_.lattice->rows) * double(scene_.lattice->columns) * bead_bytes(),
           "lattice (" + std::to_string(scene_.lattice->rows) + " x " +
               std::to_string(scene_.lattice->columns) + " beads)",
@@ -200,7 +200,7 @@ class PackingBuilder {
                          " of the sum of their radii); allowed: touching within " +
                          to_text(kTouching) + " of it, or apart");
     add_contact({.first = i, .second = j, .normal = between / distance, .rest = distance},
-                chains::hertz_stiffness(a.radius, a.material, b.radius, b.material));
+                granular::hertz_stiffness(a.radius, a.material, b.radius, b.material));
   }
 
   void find_bead_contacts(const Tree& beads) {
@@ -262,7 +262,7 @@ class PackingBuilder {
                              " of its radius, or apart");
         add_contact(
             {.first = i, .wall = int(w), .normal = normal, .rest = normal.dot(bead.centre)},
-            chains::hertz_stiffness_wall(bead.radius, bead.material, scene_.walls[w].material));
+            granular::hertz_stiffness_wall(bead.radius, bead.material, scene_.walls[w].material));
       }
     }
   }
@@ -311,7 +311,7 @@ class PackingBuilder {
                  .second = striker,
                  .normal = normal,
                  .rest = normal.dot(arrival - b.centre)},
-                chains::hertz_stiffness(b.radius, b.material, s.radius, s.material));
+                granular::hertz_stiffness(b.radius, b.material, s.radius, s.material));
   }
 
   // where a striker starts: in no wall, on no other striker
@@ -337,7 +337,7 @@ class PackingBuilder {
     model_.velocity.resize(2 * n);
     for (Eigen::Index b = 0; b < n; ++b) {
       const Body& body = bodies_[std::size_t(b)];
-      const double mass = chains::bead_mass(body.radius, body.material);
+      const double mass = granular::bead_mass(body.radius, body.material);
       if (!(mass > 0.0 && std::isfinite(mass)))
         throw InvalidInput(bead_name(model_, b) + ": " +
                            invalid_value_message("mass", mass, "a finite mass > 0 kg") +
@@ -369,19 +369,19 @@ class PackingBuilder {
       throw InvalidInput(
           "no striker approaches its target: the packing is struck by nothing; allowed: a "
           "striker whose velocity points at the bead it targets");
-    chains::check_impact_scales(model_);
+    granular::check_impact_scales(model_);
   }
 
   const PackingScene& scene_;
   PackingModel& model_;
-  const chains::RunLimits& limits_;
+  const granular::RunLimits& limits_;
   std::vector<Body> bodies_;
   double largest_radius_ = 0.0;
 };
 
 }  // namespace
 
-PackingModel build_packing_model(const PackingScene& scene, const chains::RunLimits& limits) {
+PackingModel build_packing_model(const PackingScene& scene, const granular::RunLimits& limits) {
   PackingModel model;
   PackingBuilder(scene, model, limits).build();
   return model;

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <numeric>
 
-#include "mimpact/chains/chain_impact.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/energy_ledger.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::packings {
 
@@ -32,13 +32,14 @@ PackingRun run_lzb(const PackingScene& scene, const PackingModel& model,
   run.options = impact;
   if (!scene.adaptive()) {
     const double delta_p =
-        chains::impulse_step(model, impact, chains::impact_labels(options.impact));
+        granular::impulse_step(model, impact, granular::impact_labels(options.impact));
     if (impact.delta_p) run.delta_p = delta_p;
   }
-  chains::ImpactRecorder recorder(model, scene.chain_record(), scene.record.frames, options.limits);
+  granular::ImpactRecorder recorder(model, scene.chain_record(), scene.record.frames,
+                                    options.limits);
   if (record) recorder.configure(impact);
-  run.impact = chains::simulate_impacts(model, build_packing_system(model), impact,
-                                        record ? &recorder : nullptr);
+  run.impact = granular::simulate_impacts(model, build_packing_system(model), impact,
+                                          record ? &recorder : nullptr);
   if (record) {
     run.series = recorder.series(run.impact);
     run.frames = recorder.frames(run.impact);
@@ -66,17 +67,17 @@ std::string method_name(const PackingScene& scene, const PackingRun& run) {
   return "compliant contacts integrated in time";
 }
 
-double contacts_per_step(const chains::ImpactOutcome& impact) {
+double contacts_per_step(const granular::ImpactOutcome& impact) {
   return impact.lzb.steps > 0 ? double(impact.lzb.contact_steps) / double(impact.lzb.steps) : 0.0;
 }
 
 // the contacts the impact reached: those that carried a force
-Eigen::Index contacts_reached(const chains::ImpactOutcome& impact) {
+Eigen::Index contacts_reached(const granular::ImpactOutcome& impact) {
   return Eigen::Index((impact.lzb.max_force.array() > 0.0).count());
 }
 
-chains::TimeSeries frame_table(const chains::Frames& frames, bool forces) {
-  chains::TimeSeries table;
+granular::TimeSeries frame_table(const granular::Frames& frames, bool forces) {
+  granular::TimeSeries table;
   table.time = frames.time;
   table.dimension = 2;
   const std::vector<std::vector<double>>& rows = forces ? frames.force : frames.velocity;
@@ -96,12 +97,12 @@ PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& mode
   const bool record = options.record && (!scene.record.contacts.empty() ||
                                          !scene.record.beads.empty() || scene.record.frames > 0);
   const plugins::LzbImpactOptions impact =
-      chains::resolve_impact(scene.impact, scene.method, options.impact, scene.source);
-  if (scene.method == chains::Method::lzb) return run_lzb(scene, model, options, impact, record);
-  chains::CompliantRun compliant =
-      chains::simulate_compliant(model, build_packing_system(model), scene.compliant,
-                                 record ? scene.chain_record() : chains::RecordSpec{},
-                                 record ? scene.record.frames : 0, options.limits);
+      granular::resolve_impact(scene.impact, scene.method, options.impact, scene.source);
+  if (scene.method == granular::Method::lzb) return run_lzb(scene, model, options, impact, record);
+  granular::CompliantRun compliant =
+      granular::simulate_compliant(model, build_packing_system(model), scene.compliant,
+                                   record ? scene.chain_record() : granular::RecordSpec{},
+                                   record ? scene.record.frames : 0, options.limits);
   PackingRun run;
   run.impact = std::move(compliant.impact);
   run.series = std::move(compliant.series);
@@ -113,7 +114,7 @@ PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& mode
 nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
                                        const PackingRun& run) {
   using json = nlohmann::ordered_json;
-  const chains::ImpactOutcome& impact = run.impact;
+  const granular::ImpactOutcome& impact = run.impact;
   json contacts = json::array();
   for (Eigen::Index c = 0; c < model.contact_count(); ++c) {
     const PackingContact& contact = model.contacts[std::size_t(c)];
@@ -132,16 +133,16 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
   const Eigen::VectorXd body_impulses = (after - model.velocity).cwiseProduct(model.mass);
   json summary{
       {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.lzb.status)},
-      {"method", scene.method == chains::Method::lzb ? "lzb" : "compliant"},
-      {"integrator", scene.method == chains::Method::compliant
+      {"method", scene.method == granular::Method::lzb ? "lzb" : "compliant"},
+      {"integrator", scene.method == granular::Method::compliant
                          ? json(nullptr)
                          : json(enum_name(run.options.chosen_integrator()))},
       {"delta_p", run.delta_p ? json(*run.delta_p) : json(nullptr)},
       {"relative_delta_p",
        run.options.relative_delta_p ? json(*run.options.relative_delta_p) : json(nullptr)},
       {"tolerance", scene.adaptive() ? json(run.options.adaptive_tolerance())
-                    : scene.method == chains::Method::compliant ? json(scene.compliant.tolerance)
-                                                                : json(nullptr)},
+                    : scene.method == granular::Method::compliant ? json(scene.compliant.tolerance)
+                                                                  : json(nullptr)},
       {"beads", model.bead_count},
       {"bodies", model.body_count()},
       {"post_impact_velocities", per_body(model, after)},
@@ -153,13 +154,13 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"impact_time", impact.impact_time},
       {"impact_duration", impact.lzb.duration},
       {"kinetic_energy",
-       {{"before", chains::kinetic_energy(model, model.velocity)},
-        {"after", chains::kinetic_energy(model, after)},
+       {{"before", granular::kinetic_energy(model, model.velocity)},
+        {"after", granular::kinetic_energy(model, after)},
         {"residual_potential", impact.lzb.residual_energy}}},
       {"momentum",
        {{"before", pair(momentum(model, model.velocity))},
         {"after", pair(momentum(model, after))}}},
-      {"energy", chains::ledger_json(chains::energy_ledger(model, impact))},
+      {"energy", granular::ledger_json(granular::energy_ledger(model, impact))},
       {"wall_time", impact.wall_time},
       {"contacts", contacts}};
   return summary;
@@ -167,9 +168,9 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
 
 std::string packing_report(const PackingScene& scene, const PackingModel& model,
                            const PackingRun& run) {
-  const chains::ImpactOutcome& impact = run.impact;
-  const double before = chains::kinetic_energy(model, model.velocity);
-  const double after = chains::kinetic_energy(model, impact.velocity_after);
+  const granular::ImpactOutcome& impact = run.impact;
+  const double before = granular::kinetic_energy(model, model.velocity);
+  const double after = granular::kinetic_energy(model, impact.velocity_after);
   const Eigen::Vector2d p0 = momentum(model, model.velocity);
   const Eigen::Vector2d p1 = momentum(model, impact.velocity_after);
   Eigen::Index fastest = 0;
@@ -228,11 +229,11 @@ std::string contacts_csv(const PackingModel& model) {
   return text;
 }
 
-std::string frame_forces_csv(const chains::Frames& frames) {
+std::string frame_forces_csv(const granular::Frames& frames) {
   return frame_table(frames, true).forces_csv();
 }
 
-std::string frame_velocities_csv(const chains::Frames& frames) {
+std::string frame_velocities_csv(const granular::Frames& frames) {
   return frame_table(frames, false).velocities_csv();
 }
 

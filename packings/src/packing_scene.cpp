@@ -9,7 +9,7 @@ namespace mimpact::packings {
 
 namespace {
 
-using chains::SceneChecks;
+using granular::SceneChecks;
 using nlohmann::json;
 
 // A pair [x, y] of finite numbers, or InvalidInput naming the field.
@@ -61,7 +61,7 @@ void check_strikers(const PackingScene& scene, const SceneChecks& checks) {
     const std::string path = "strikers[" + std::to_string(k) + "]";
     check_pair(striker.velocity, path + ".velocity", "[vx, vy], finite and not zero (m/s)", checks);
     const double speed = std::hypot(striker.velocity[0], striker.velocity[1]);
-    if (!(speed >= chains::kStrikerSpeed.lower))
+    if (!(speed >= granular::kSlowestStriker))
       checks.fail(path + ".velocity = [" + to_text(striker.velocity[0]) + ", " +
                   to_text(striker.velocity[1]) +
                   "] is invalid; allowed: [vx, vy] of speed >= 1e-100 m/s (below, m v^2 "
@@ -90,7 +90,7 @@ PackingScene read_packing_scene(json document, const std::string& source,
                                 const std::filesystem::path& directory,
                                 const kernel::JsonLocations* locations) {
   const SceneChecks checks(source);
-  chains::lend_material(document, {"/lattice", "/beads", "/walls", "/strikers"}, source);
+  granular::lend_material(document, {"/lattice", "/beads", "/walls", "/strikers"}, source);
   PackingScene scene;
   kernel::read_fields(
       document, scene,
@@ -100,22 +100,22 @@ PackingScene read_packing_scene(json document, const std::string& source,
   check_packing(scene, checks);
   check_walls(scene, checks);
   check_strikers(scene, checks);
-  scene.impact = chains::resolve_impact(scene.impact, scene.method, {}, source);
+  scene.impact = granular::resolve_impact(scene.impact, scene.method, {}, source);
   return scene;
 }
 
 PackingScene parse_packing_scene(std::string_view text, const std::string& source,
                                  const std::filesystem::path& directory) {
-  kernel::JsonDocument document = chains::parse_scene_document(text, source);
+  kernel::JsonDocument document = granular::parse_scene_document(text, source);
   return read_packing_scene(std::move(document.value), source, directory, &document.locations);
 }
 
 PackingScene load_packing_scene(const std::filesystem::path& path) {
-  return parse_packing_scene(chains::read_scene_file(path), path.string(),
+  return parse_packing_scene(granular::read_scene_file(path), path.string(),
                              path.has_parent_path() ? path.parent_path() : ".");
 }
 
-chains::RecordSpec PackingScene::chain_record() const {
+granular::RecordSpec PackingScene::chain_record() const {
   return {.contacts = record.contacts,
           .bodies = record.beads,
           .every = record.every,

@@ -10,8 +10,8 @@
 #include "json_conversion.hpp"
 #include "mimpact/chains/chain_convergence.hpp"
 #include "mimpact/chains/chain_run.hpp"
-#include "mimpact/chains/hertz.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/hertz.hpp"
 #include "mimpact/kernel/parameters.hpp"
 #include "scene_arguments.hpp"
 
@@ -32,7 +32,7 @@ struct ChainResult {
   double duration = 0.0;                   // s, physical duration of the impacts
   std::int64_t steps = 0;
   std::optional<double> delta_p;   // N s, the impulse steps'; None for the other methods
-  py::dict energy;                 // the ledger (J): chains::EnergyLedger's fields
+  py::dict energy;                 // the ledger (J): granular::EnergyLedger's fields
   py::object series = py::none();  // dict of arrays when the scene records, else None
   py::dict summary;                // everything summary.json holds
 };
@@ -50,7 +50,8 @@ chains::ChainScene load_scene(const py::object& scene) {
 py::object read_scene(const py::object& path_argument) {
   const std::string path =
       py::module_::import("os").attr("fspath")(path_argument).cast<std::string>();
-  kernel::JsonDocument document = chains::parse_scene_document(chains::read_scene_file(path), path);
+  kernel::JsonDocument document =
+      granular::parse_scene_document(granular::read_scene_file(path), path);
   chains::read_chain_scene(document.value, path, &document.locations);  // the file's messages
   return from_json(nlohmann::ordered_json(document.value));
 }
@@ -61,7 +62,7 @@ void check_scene(const py::object& scene) { chains::build_chain_model(load_scene
 ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p,
                       double max_memory) {
   const chains::ChainScene scene = load_scene(scene_argument);
-  const chains::RunLimits limits = memory_limits(max_memory);
+  const granular::RunLimits limits = memory_limits(max_memory);
   chains::ChainRun run;
   nlohmann::ordered_json summary;
   {
@@ -73,7 +74,7 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
     run = chains::run_chain_scene(scene, model, options);
     summary = chains::run_summary(model, run);
   }
-  const chains::ImpactOutcome& impact = run.impact;
+  const granular::ImpactOutcome& impact = run.impact;
   if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite()))
     throw Error("the run produced a non-finite velocity or force");
   ChainResult result;
@@ -97,7 +98,7 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
 py::object converge(const py::object& scene_argument, std::vector<double> tolerance,
                     std::optional<double> first, int rows, double max_memory) {
   const chains::ChainScene scene = load_scene(scene_argument);
-  const chains::RunLimits limits = memory_limits(max_memory);
+  const granular::RunLimits limits = memory_limits(max_memory);
   nlohmann::ordered_json study;
   {
     py::gil_scoped_release computing;
@@ -115,9 +116,9 @@ py::object converge(const py::object& scene_argument, std::vector<double> tolera
 }
 
 // {"density": kg/m^3, "young": Pa, "poisson": nu}, checked as a scene's "material"
-chains::Material material(const py::dict& fields, const std::string& name) {
-  return kernel::options_from<chains::Material>(kernel::Parameters(to_json(fields, name)),
-                                                {.name = name});
+granular::Material material(const py::dict& fields, const std::string& name) {
+  return kernel::options_from<granular::Material>(kernel::Parameters(to_json(fields, name)),
+                                                  {.name = name});
 }
 
 // A radius (m) checked as a scene's radii are.
@@ -141,7 +142,7 @@ void bind_chains(py::module_& module) {
   module.def(
       "bead_mass",
       [](double r, const py::dict& of) {
-        return finite_result(chains::bead_mass(radius(r, "radius"), material(of, "material")),
+        return finite_result(granular::bead_mass(radius(r, "radius"), material(of, "material")),
                              "bead_mass");
       },
       py::arg("radius"), py::arg("material"),
@@ -150,8 +151,8 @@ void bind_chains(py::module_& module) {
       "hertz_stiffness",
       [](double radius_a, const py::dict& a, double radius_b, const py::dict& b) {
         return finite_result(
-            chains::hertz_stiffness(radius(radius_a, "radius_a"), material(a, "material_a"),
-                                    radius(radius_b, "radius_b"), material(b, "material_b")),
+            granular::hertz_stiffness(radius(radius_a, "radius_a"), material(a, "material_a"),
+                                      radius(radius_b, "radius_b"), material(b, "material_b")),
             "hertz_stiffness");
       },
       py::arg("radius_a"), py::arg("material_a"), py::arg("radius_b"), py::arg("material_b"),
@@ -160,8 +161,8 @@ void bind_chains(py::module_& module) {
       "hertz_stiffness_wall",
       [](double r, const py::dict& bead, const py::dict& wall) {
         return finite_result(
-            chains::hertz_stiffness_wall(radius(r, "radius"), material(bead, "bead"),
-                                         material(wall, "wall")),
+            granular::hertz_stiffness_wall(radius(r, "radius"), material(bead, "bead"),
+                                           material(wall, "wall")),
             "hertz_stiffness_wall");
       },
       py::arg("radius"), py::arg("bead"), py::arg("wall"),
@@ -223,7 +224,8 @@ void bind_chains(py::module_& module) {
             return r;
           }));
   module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
-             py::arg("delta_p") = py::none(), py::arg("max_memory") = chains::RunLimits{}.memory_gb,
+             py::arg("delta_p") = py::none(),
+             py::arg("max_memory") = granular::RunLimits{}.memory_gb,
              "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
              "the method it chooses; delta_p (N s) overrides the scene's impulse step; a run "
              "that would hold more than max_memory GB is refused before it starts.");
@@ -233,7 +235,7 @@ void bind_chains(py::module_& module) {
              "raises the ValueError run_chain(scene) would raise for bad input, without running");
   module.def("converge", &converge, py::arg("scene"), py::kw_only(),
              py::arg("tolerance") = std::vector<double>{}, py::arg("first") = py::none(),
-             py::arg("rows") = 12, py::arg("max_memory") = chains::RunLimits{}.memory_gb,
+             py::arg("rows") = 12, py::arg("max_memory") = granular::RunLimits{}.memory_gb,
              "The convergence study of `mimpact converge`: the adaptive integrator's tolerance "
              "t, t/10, ... or delta_p h, h/2, ... until the post-impact velocities (and peak "
              "forces) change by at most tolerance = [eps+, eps]; returns its rows as a dict.");

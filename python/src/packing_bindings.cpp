@@ -54,7 +54,7 @@ Eigen::MatrixX2d per_body(const Eigen::VectorXd& coordinates) {
       coordinates.data(), coordinates.size() / 2, 2);
 }
 
-py::dict frames_dict(const chains::Frames& frames, Eigen::Index bodies) {
+py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies) {
   py::dict dict;
   dict["time"] = Eigen::VectorXd(
       Eigen::Map<const Eigen::VectorXd>(frames.time.data(), Eigen::Index(frames.time.size())));
@@ -70,7 +70,7 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
   packings::PackingScene scene = load_scene(scene_argument);
   if (!data_dir.is_none())
     scene.directory = py::module_::import("os").attr("fspath")(data_dir).cast<std::string>();
-  const chains::RunLimits limits = memory_limits(max_memory);
+  const granular::RunLimits limits = memory_limits(max_memory);
   packings::PackingModel model;
   packings::PackingRun run;
   nlohmann::ordered_json summary;
@@ -83,7 +83,7 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
     run = packings::run_packing_scene(scene, model, options);
     summary = packings::packing_summary(scene, model, run);
   }
-  const chains::ImpactOutcome& impact = run.impact;
+  const granular::ImpactOutcome& impact = run.impact;
   if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite()))
     throw Error("the run produced a non-finite velocity or force");
   PackingResult result;
@@ -150,7 +150,7 @@ void bind_packings(py::module_& module) {
       });
   module.def("run_packing", &run_packing, py::arg("scene"), py::kw_only(),
              py::arg("delta_p") = py::none(), py::arg("data_dir") = py::none(),
-             py::arg("max_memory") = chains::RunLimits{}.memory_gb,
+             py::arg("max_memory") = granular::RunLimits{}.memory_gb,
              "Runs a planar packing scene (a path, or a dict with its keys) as `mimpact packing` "
              "does; delta_p (N s) overrides the scene's impulse step; bead lists are read only "
              "inside data_dir (by default the scene file's directory, or the working directory "

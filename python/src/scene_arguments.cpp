@@ -7,8 +7,8 @@ namespace py = pybind11;
 
 namespace mimpact::python {
 
-chains::RunLimits memory_limits(double max_memory) {
-  const chains::RunLimits limits{.memory_gb = max_memory, .memory_option = "max_memory="};
+granular::RunLimits memory_limits(double max_memory) {
+  const granular::RunLimits limits{.memory_gb = max_memory, .memory_option = "max_memory="};
   limits.check();
   return limits;
 }
@@ -21,7 +21,7 @@ Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t 
   return matrix;
 }
 
-py::dict series_dict(const chains::TimeSeries& series) {
+py::dict series_dict(const granular::TimeSeries& series) {
   py::dict dict;
   dict["time"] = Eigen::VectorXd(
       Eigen::Map<const Eigen::VectorXd>(series.time.data(), Eigen::Index(series.time.size())));

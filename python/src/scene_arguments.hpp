@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "json_conversion.hpp"
-#include "mimpact/chains/run_limits.hpp"
-#include "mimpact/chains/time_series.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/run_limits.hpp"
+#include "mimpact/granular/time_series.hpp"
 
 // What the chain and packing bindings share: scenes given as a path or a dict, and time series
 // as NumPy arrays.
@@ -28,13 +28,13 @@ auto load_scene_argument(const pybind11::object& scene, Read&& read, Load&& load
 }
 
 // The limits of a run from Python's max_memory= (GB), checked.
-chains::RunLimits memory_limits(double max_memory);
+granular::RunLimits memory_limits(double max_memory);
 
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns);
 
 // {"time", "contacts", "forces" (samples x contacts), "bodies", "velocities" (samples x bodies,
 // or samples x bodies x 2 in the plane)}
-pybind11::dict series_dict(const chains::TimeSeries& series);
+pybind11::dict series_dict(const granular::TimeSeries& series);
 
 }  // namespace mimpact::python

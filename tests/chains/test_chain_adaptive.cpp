@@ -19,7 +19,7 @@ namespace {
 TEST(AdaptiveChains, ElasticChainsAreTheExactHertzChain) {
   for (const char* scene : {"c1.json", "c2.json"}) {
     const chains::ChainModel model = scene_model(scene);
-    const chains::ImpactOutcome impact = run_adaptive(model, 1e-10);
+    const granular::ImpactOutcome impact = run_adaptive(model, 1e-10);
     ASSERT_EQ(impact.lzb.status, numerics::LzbStatus::terminated);
     const Eigen::VectorXd exact =
         integrate_hertz_chain(model.mass, model.velocity, stiffnesses(model)).velocity;
@@ -62,9 +62,9 @@ TEST(AdaptiveChains, SameModelAsTheImpulseStepsExtrapolated) {
       for (numerics::ContactLaw& law : model.laws)
         law.model = numerics::ComplianceModel::mono_stiffness;
     const std::string name = std::string(c.scene) + (c.mono_stiffness ? " (mono)" : "");
-    const chains::ImpactOutcome coarse = run_chain(model, 2.0 * c.finest_delta_p);
-    const chains::ImpactOutcome fine = run_chain(model, c.finest_delta_p);
-    const chains::ImpactOutcome adaptive = run_adaptive(model, 1e-10);
+    const granular::ImpactOutcome coarse = run_chain(model, 2.0 * c.finest_delta_p);
+    const granular::ImpactOutcome fine = run_chain(model, c.finest_delta_p);
+    const granular::ImpactOutcome adaptive = run_adaptive(model, 1e-10);
     ASSERT_EQ(adaptive.lzb.status, numerics::LzbStatus::terminated) << name;
     const double velocity_gap = relative_difference(
         adaptive.velocity_after, richardson(fine.velocity_after, coarse.velocity_after));

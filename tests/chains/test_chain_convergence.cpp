@@ -9,7 +9,7 @@
 
 #include "../support/chain_runs.hpp"
 #include "../support/hertz_chain_reference.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::testing {
 namespace {
@@ -22,7 +22,7 @@ struct TableRow {
 void expect_step_counts(const std::string& scene, const std::vector<TableRow>& table) {
   const chains::ChainModel model = scene_model(scene);
   for (const TableRow& row : table) {
-    const chains::ImpactOutcome impact = run_chain(model, row.delta_p);
+    const granular::ImpactOutcome impact = run_chain(model, row.delta_p);
     ASSERT_EQ(impact.lzb.status, numerics::LzbStatus::terminated);
     const double taken = double(row.paper_steps - 1);
     EXPECT_NEAR(double(impact.lzb.steps), taken, 0.01 * taken)
@@ -44,7 +44,7 @@ TEST(Conservation, MomentumToRoundOffInEveryConvergenceChain) {
   for (const char* scene : {"c1.json", "c2.json", "c3.json"}) {
     const chains::ChainModel model = scene_model(scene);
     for (double delta_p : {1e-5, 1e-6}) {
-      const chains::ImpactOutcome impact = run_chain(model, delta_p);
+      const granular::ImpactOutcome impact = run_chain(model, delta_p);
       EXPECT_LE(relative_momentum_change(model, impact), 1e-12) << scene << " " << delta_p;
     }
   }
@@ -58,7 +58,7 @@ TEST(Conservation, ElasticChainKeepsItsEnergyToSecondOrder) {
   const double natural_impulse = model.mass(0) * model.velocity(0);
   std::vector<double> errors;
   for (double delta_p : {1e-4, 1e-5, 1e-6}) {
-    const chains::ImpactOutcome impact = run_chain(model, delta_p);
+    const granular::ImpactOutcome impact = run_chain(model, delta_p);
     const double error = std::abs(kinetic_energy_ratio(model, impact) - 1.0);
     const double h = delta_p / natural_impulse;
     EXPECT_LE(error, h * h) << "delta_p = " << delta_p;  // measured: 0.24 to 0.35 h^2
@@ -76,7 +76,7 @@ TEST(PaperTable4, C3EndsCleanlyAtEveryPublishedStep) {
   const chains::ChainModel model = scene_model("c3.json");
   const double block_speed = model.velocity(0) / double(model.body_count());
   for (double delta_p : {1e-5, 1e-6, 1e-7}) {
-    const chains::ImpactOutcome impact = run_chain(model, delta_p);
+    const granular::ImpactOutcome impact = run_chain(model, delta_p);
     ASSERT_EQ(impact.lzb.status, numerics::LzbStatus::terminated) << delta_p;
     ASSERT_TRUE(impact.velocity_after.allFinite());
     EXPECT_LE(relative_momentum_change(model, impact), 1e-12);
@@ -166,7 +166,7 @@ TEST(Convergence, LzbConvergesToTheCompliantReferenceAtFirstOrder) {
                                                         "/examples/scenes/" + scene_name);
     const chains::ChainModel model = chains::build_chain_model(scene);
     scene.compliant.tolerance = 1e-12;
-    const chains::CompliantRun reference =
+    const granular::CompliantRun reference =
         chains::simulate_chain_compliant(model, scene.compliant, scene.record);
     // the compliant method is the Hertz chain: it agrees with the tests' own integration
     const Eigen::VectorXd hertz =

@@ -15,10 +15,10 @@ namespace {
 TEST(ChainThroughKernel, SameImpactAsNumericsAloneToRoundOff) {
   for (const char* scene : {"c1.json", "c2.json", "c3.json"}) {
     const chains::ChainModel model = scene_model(scene);
-    const chains::ImpactOutcome kernel = run_chain(model, 1e-5);
+    const granular::ImpactOutcome kernel = run_chain(model, 1e-5);
     numerics::LzbOptions options;
     options.delta_p = 1e-5;
-    const chains::ImpactOutcome direct = chains::simulate_chain_impact_numerics(model, options);
+    const granular::ImpactOutcome direct = chains::simulate_chain_impact_numerics(model, options);
     EXPECT_EQ(kernel.lzb.steps, direct.lzb.steps) << scene;
     EXPECT_LE(relative_difference(kernel.velocity_after, direct.velocity_after), 1e-12) << scene;
     EXPECT_LE((kernel.lzb.max_force - direct.lzb.max_force).cwiseAbs().maxCoeff(),
@@ -42,10 +42,10 @@ chains::ChainModel ten_bead_chain(double gap, double speed) {
 TEST(ChainThroughKernel, StrikerFliesToTheChainThenTheSameImpact) {
   const double speed = 0.8;
   const chains::ChainModel touching = ten_bead_chain(0.0, speed);
-  const chains::ImpactOutcome reference = run_chain(touching, 1e-6);
+  const granular::ImpactOutcome reference = run_chain(touching, 1e-6);
   for (double gap : {1e-4, 0.0123, 0.5}) {
     const chains::ChainModel flying = ten_bead_chain(gap, speed);
-    const chains::ImpactOutcome impact = run_chain(flying, 1e-6);
+    const granular::ImpactOutcome impact = run_chain(flying, 1e-6);
     EXPECT_NEAR(impact.impact_time, gap / speed, 1e-10 + 1e-15 * gap / speed) << gap;
     EXPECT_LE(relative_difference(impact.velocity_after, reference.velocity_after), 1e-12) << gap;
   }

@@ -34,9 +34,9 @@ class DissipativeChain : public ::testing::TestWithParam<LongImpact> {};
 TEST_P(DissipativeChain, EndsAndAgreesWithTenTimesSmallerDeltaP) {
   const auto [beads, speed, restitution] = GetParam();
   const chains::ChainModel model = struck_chain(beads, speed, restitution);
-  const chains::ImpactOutcome coarse = run_chain(model, 1e-6);
-  const chains::ImpactOutcome fine = run_chain(model, 1e-7);
-  for (const chains::ImpactOutcome* impact : {&coarse, &fine}) {
+  const granular::ImpactOutcome coarse = run_chain(model, 1e-6);
+  const granular::ImpactOutcome fine = run_chain(model, 1e-7);
+  for (const granular::ImpactOutcome* impact : {&coarse, &fine}) {
     ASSERT_EQ(impact->lzb.status, numerics::LzbStatus::terminated);
     ASSERT_TRUE(impact->velocity_after.allFinite());
     EXPECT_LE(relative_momentum_change(model, *impact), 1e-12);
@@ -80,7 +80,7 @@ TEST_P(DissipativeChain, ElasticVersionMatchesTheExactHertzChain) {
   const HertzChainOutcome exact =
       integrate_hertz_chain(model.mass, model.velocity, stiffnesses(model));
   for (double delta_p : {1e-6, 1e-7}) {
-    const chains::ImpactOutcome impact = run_chain(model, delta_p);
+    const granular::ImpactOutcome impact = run_chain(model, delta_p);
     const double tolerance = delta_p == 1e-6 ? 5e-3 : 5e-4;
     // the last contact's peak is reached as the chain's end flies off: compare the rest
     for (Eigen::Index j = 0; j + 1 < model.contact_count(); ++j)
@@ -102,7 +102,7 @@ TEST(ExactHertz, TwentyFiveBeadChainPeakForceAtBeadNine) {
   const HertzChainOutcome exact =
       integrate_hertz_chain(model.mass, model.velocity, stiffnesses(model));
   EXPECT_NEAR(exact.max_force(9), 11.0506, 1e-4);
-  const chains::ImpactOutcome impact = run_chain(model, 1e-7);
+  const granular::ImpactOutcome impact = run_chain(model, 1e-7);
   EXPECT_NEAR(impact.lzb.max_force(9), 11.0506, 11.0506 * 5e-4);
   std::printf("contact 9: exact %.6f N, LZB (1e-7) %.6f N\n", exact.max_force(9),
               impact.lzb.max_force(9));

@@ -144,7 +144,7 @@ TEST(ChainScene, RightStrikerAndWallBuildTheirBodiesAndContacts) {
   const Eigen::MatrixXd H = model.H;
   EXPECT_NEAR(H(5, 5), 1.0 / model.mass(5), 1e-9);  // the wall does not move
   EXPECT_NEAR(H(4, 5), -1.0 / model.mass(5), 1e-9);
-  const chains::Material steel{7780, 203e9, 0.3}, aluminium{2700, 70e9, 0.33};
+  const granular::Material steel{7780, 203e9, 0.3}, aluminium{2700, 70e9, 0.33};
   EXPECT_NEAR(model.laws[5].stiffness, hertz_stiffness_wall(0.005, aluminium, steel), 1e-3);
 }
 

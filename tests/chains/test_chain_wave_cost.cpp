@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "../support/chain_runs.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::testing {
 namespace {
@@ -23,8 +23,8 @@ chains::ChainModel c1_beads(int beads) {
 
 // The wave forms within 2e-4 s and crosses a bead in 3.2e-5 s: the compliant run ends after it
 // has left (behind it the beads come to rest touching, so the contacts never all open).
-chains::CompliantRun run_compliant(const chains::ChainModel& model, double tolerance) {
-  chains::CompliantSpec spec;
+granular::CompliantRun run_compliant(const chains::ChainModel& model, double tolerance) {
+  granular::CompliantSpec spec;
   spec.tolerance = tolerance;
   spec.end_time = 2e-4 + 3.2e-5 * double(model.body_count());
   return chains::simulate_chain_compliant(model, spec, {});
@@ -32,8 +32,8 @@ chains::CompliantRun run_compliant(const chains::ChainModel& model, double toler
 
 TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
   const chains::ChainModel short_chain = c1_beads(300), long_chain = c1_beads(3000);
-  const chains::CompliantRun compliant_short = run_compliant(short_chain, 1e-6);
-  const chains::CompliantRun compliant_long = run_compliant(long_chain, 1e-6);
+  const granular::CompliantRun compliant_short = run_compliant(short_chain, 1e-6);
+  const granular::CompliantRun compliant_long = run_compliant(long_chain, 1e-6);
   const double compliant_ratio =
       double(compliant_long.impact.lzb.steps) / double(compliant_short.impact.lzb.steps);
   std::printf(
@@ -47,8 +47,8 @@ TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
   EXPECT_LE(compliant_long.most_bodies_in_motion, 12);
   EXPECT_EQ(compliant_long.most_bodies_in_motion, compliant_short.most_bodies_in_motion);
 
-  const chains::ImpactOutcome adaptive_short = run_adaptive(short_chain, 1e-6);
-  const chains::ImpactOutcome adaptive_long = run_adaptive(long_chain, 1e-6);
+  const granular::ImpactOutcome adaptive_short = run_adaptive(short_chain, 1e-6);
+  const granular::ImpactOutcome adaptive_long = run_adaptive(long_chain, 1e-6);
   const double adaptive_ratio = double(adaptive_long.lzb.steps) / double(adaptive_short.lzb.steps);
   const double contacts_per_step =
       double(adaptive_long.lzb.contact_steps) / double(adaptive_long.lzb.steps);
@@ -71,8 +71,8 @@ TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
 // at tolerance 1e-9 against the adaptive run at 1e-10).
 TEST(WaveCost, TheWakesSlowCollisionsCostNoIntegration) {
   const chains::ChainModel model = c1_beads(30000);
-  const chains::CompliantRun compliant = run_compliant(model, 1e-8);
-  const chains::ImpactOutcome adaptive = run_adaptive(model, 1e-9);
+  const granular::CompliantRun compliant = run_compliant(model, 1e-8);
+  const granular::ImpactOutcome adaptive = run_adaptive(model, 1e-9);
   const Eigen::Index last = model.body_count() - 1;
   std::printf(
       "30 000 beads: compliant at 1e-8, %lld steps, at most %lld bodies in motion; last "
@@ -81,7 +81,7 @@ TEST(WaveCost, TheWakesSlowCollisionsCostNoIntegration) {
       compliant.impact.velocity_after(last), adaptive.velocity_after(last));
   EXPECT_LE(compliant.most_bodies_in_motion, 12);
   EXPECT_NEAR(compliant.impact.velocity_after(last), adaptive.velocity_after(last), 2e-6);
-  const chains::EnergyLedger ledger = chains::energy_ledger(model, compliant.impact);
+  const granular::EnergyLedger ledger = granular::energy_ledger(model, compliant.impact);
   EXPECT_LE(std::abs(ledger.imbalance()), 1e-12 * ledger.kinetic_before);
 }
 
@@ -89,7 +89,7 @@ TEST(WaveCost, TheWakesSlowCollisionsCostNoIntegration) {
 // extremes and its energy, with every velocity left to summary.json.
 TEST(WaveCost, ALongChainsReportStaysShort) {
   const chains::ChainModel model = c1_beads(3000);
-  const chains::ImpactOutcome impact = run_adaptive(model, 1e-6);
+  const granular::ImpactOutcome impact = run_adaptive(model, 1e-6);
   const std::string report = chains::chain_report(model, impact, "adaptive, tolerance 1e-06");
   std::printf("%s", report.c_str());
   EXPECT_LE(std::count(report.begin(), report.end(), '\n'), 10);
@@ -109,12 +109,12 @@ TEST(WaveCost, FreeFlightCostsNoStep) {
   const chains::ChainModel touching = chains::build_chain_model(scene);
   scene.strikers[0].gap = 1.0;
   const chains::ChainModel far = chains::build_chain_model(scene);
-  chains::CompliantSpec spec;
+  granular::CompliantSpec spec;
   spec.tolerance = 1e-8;
   spec.end_time = 1.0 + 2e-3;
-  const chains::CompliantRun flown = chains::simulate_chain_compliant(far, spec, {});
+  const granular::CompliantRun flown = chains::simulate_chain_compliant(far, spec, {});
   spec.end_time = 2e-3;
-  const chains::CompliantRun struck = chains::simulate_chain_compliant(touching, spec, {});
+  const granular::CompliantRun struck = chains::simulate_chain_compliant(touching, spec, {});
   std::printf("striker 1 m away: %lld steps, touching: %lld steps; impact at t = %.12g s\n",
               (long long)flown.impact.lzb.steps, (long long)struck.impact.lzb.steps,
               flown.impact.impact_time);

@@ -10,8 +10,8 @@
 #include "../support/chain_runs.hpp"
 #include "mimpact/analysis/lzb_convergence.hpp"
 #include "mimpact/analysis/lzb_tolerance_study.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::testing {
 namespace {

@@ -41,7 +41,7 @@ const char* method_name(Method method) {
 
 // The scene run by `method`: its own delta_p, the adaptive LZB at 1e-8 or the compliant
 // method at 1e-10 (until end_time when the scene gives one).
-chains::EnergyLedger ledger_of(json scene, Method method, const std::string& what) {
+granular::EnergyLedger ledger_of(json scene, Method method, const std::string& what) {
   scene.erase("record");
   if (method == Method::adaptive)
     scene["impact"] = {{"integrator", "adaptive"}, {"tolerance", 1e-8}};
@@ -54,7 +54,7 @@ chains::EnergyLedger ledger_of(json scene, Method method, const std::string& wha
   const chains::ChainScene parsed = chains::parse_chain_scene(scene.dump(), what);
   const chains::ChainModel model = chains::build_chain_model(parsed);
   const chains::ChainRun run = chains::run_chain_scene(parsed, model);
-  const chains::EnergyLedger ledger = chains::energy_ledger(model, run.impact);
+  const granular::EnergyLedger ledger = granular::energy_ledger(model, run.impact);
   const double scale = ledger.kinetic_before + ledger.potential_before + ledger.work_of_forces;
   std::printf("%-40s %-14s T %.6g -> %.6g J, dissipated %.4g, left %.3g, imbalance %.2g\n",
               what.c_str(), method_name(method), ledger.kinetic_before, ledger.kinetic_after,
@@ -71,7 +71,7 @@ const Method kMethods[] = {Method::impulse_steps, Method::adaptive, Method::comp
 // Elastic contacts (e = 1) dissipate nothing but what the method's accuracy leaves.
 TEST(EnergyLedger, ElasticChainDissipatesNothing) {
   for (Method method : kMethods) {
-    const chains::EnergyLedger ledger = ledger_of(read_scene("c1.json"), method, "c1.json");
+    const granular::EnergyLedger ledger = ledger_of(read_scene("c1.json"), method, "c1.json");
     EXPECT_LE(std::abs(ledger.dissipated_total), 1e-6 * ledger.kinetic_before);
     EXPECT_LE(ledger.potential_left, 1e-6 * ledger.kinetic_before);
   }
@@ -81,8 +81,8 @@ TEST(EnergyLedger, ElasticChainDissipatesNothing) {
 // adaptive LZB and the impulse steps (the same model) put it at the same contacts.
 TEST(EnergyLedger, DissipationIsWhereTheLawsPutIt) {
   const json scene = read_scene("c3.json");
-  const chains::EnergyLedger steps = ledger_of(scene, Method::impulse_steps, "c3.json");
-  const chains::EnergyLedger adaptive = ledger_of(scene, Method::adaptive, "c3.json");
+  const granular::EnergyLedger steps = ledger_of(scene, Method::impulse_steps, "c3.json");
+  const granular::EnergyLedger adaptive = ledger_of(scene, Method::adaptive, "c3.json");
   ledger_of(scene, Method::compliant, "c3.json");
   const double lost = steps.kinetic_before - steps.kinetic_after;
   EXPECT_GT(lost, 0.1 * steps.kinetic_before);
@@ -99,7 +99,7 @@ TEST(EnergyLedger, LoneContactDissipatesOneMinusESquared) {
   scene["chain"]["segments"][0]["count"] = 1;
   scene["contact"]["restitution"] = 0.5;
   for (Method method : kMethods) {
-    const chains::EnergyLedger ledger = ledger_of(scene, method, "striker and one bead, e = 0.5");
+    const granular::EnergyLedger ledger = ledger_of(scene, method, "striker and one bead, e = 0.5");
     // equal masses: the relative motion holds half the kinetic energy
     const double expected = (1.0 - 0.25) * 0.5 * ledger.kinetic_before;
     EXPECT_NEAR(ledger.dissipated(0), expected, 1e-5 * expected) << method_name(method);
@@ -116,7 +116,7 @@ TEST(EnergyLedger, EveryKindOfScene) {
     flying["strikers"][0]["gap"] = 1e-3;
     ledger_of(flying, method, "c3.json, striker 1 mm away");
   }
-  const chains::EnergyLedger precompressed =
+  const granular::EnergyLedger precompressed =
       ledger_of(read_scene("paper/coste_chain_precompressed.json"), Method::compliant,
                 "coste_chain_precompressed.json");
   EXPECT_GT(precompressed.potential_before, 0.0);

@@ -7,7 +7,7 @@
 #include "../support/chain_runs.hpp"
 #include "mimpact/analysis/nesterenko.hpp"
 #include "mimpact/analysis/pulse_analysis.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::testing {
 namespace {
@@ -26,12 +26,12 @@ struct Pulses {
 
 Pulses run_paper_scene(chains::ChainScene scene) {
   const chains::ChainModel model = chains::build_chain_model(scene);
-  chains::ImpactRecorder recorder(model, scene.record);
+  granular::ImpactRecorder recorder(model, scene.record);
   plugins::LzbImpactOptions options;
   options.delta_p = scene.impact.delta_p;
   recorder.configure(options);
-  const chains::ImpactOutcome impact = chains::simulate_chain_impact(model, options, &recorder);
-  const chains::TimeSeries series = recorder.series(impact);
+  const granular::ImpactOutcome impact = chains::simulate_chain_impact(model, options, &recorder);
+  const granular::TimeSeries series = recorder.series(impact);
   return {chains::chain_summary(model, impact, options.delta_p, &series)};
 }
 
@@ -97,7 +97,7 @@ TEST(PaperW, SpeedGoesAsTheForceToTheOneSixth) {
     chains::ChainScene scene = paper_scene("coste_chain.json");
     scene.strikers[0].velocity = striker_speed;
     const double striker_mass =
-        chains::bead_mass(scene.strikers[0].radius, scene.strikers[0].material);
+        granular::bead_mass(scene.strikers[0].radius, scene.strikers[0].material);
     scene.impact.delta_p = 1e-3 * striker_mass * striker_speed;
     const Pulses run = run_paper_scene(scene);
     const double distance =
@@ -126,9 +126,9 @@ TEST(PaperW, PrecompressedChainsFollowEquation22) {
     scene.precompression = static_force;
     scene.strikers[0].velocity = striker_speed;
     const chains::ChainModel model = chains::build_chain_model(scene);
-    const chains::CompliantRun run =
+    const granular::CompliantRun run =
         chains::simulate_chain_compliant(model, scene.compliant, scene.record);
-    const chains::TimeSeries& series = run.series;
+    const granular::TimeSeries& series = run.series;
     ASSERT_EQ(series.contacts, (std::vector<int>{16, 26, 36}));
     // at rest: the contact after bead 36 carries F_0 while the wave is still 20 beads away
     for (std::size_t r = 0; series.time[r] < 1e-4; ++r)

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "mimpact/chains/hertz.hpp"
+#include "mimpact/granular/hertz.hpp"
 #include "mimpact/models/newtons_cradle.hpp"
 #include "mimpact/models/simulation_setup.hpp"
 #include "mimpact/numerics/delassus.hpp"

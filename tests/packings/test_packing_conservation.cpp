@@ -21,8 +21,8 @@ double relative_momentum_change(const PackingCase& packing) {
 
 double relative_energy_change(const PackingCase& packing) {
   const packings::PackingModel& model = packing.model;
-  const double before = chains::kinetic_energy(model, model.velocity);
-  return std::abs(chains::kinetic_energy(model, packing.run.impact.velocity_after) - before) /
+  const double before = granular::kinetic_energy(model, model.velocity);
+  return std::abs(granular::kinetic_energy(model, packing.run.impact.velocity_after) - before) /
          before;
 }
 

@@ -71,8 +71,8 @@ TEST(PackingConvergence, OpenGapsPartFromTheLzbImpact) {
   const double difference = largest_difference(open, adaptive);
   std::printf("open gaps against the LZB impact: %.3e m/s\n", difference);
   EXPECT_GT(difference, 1e-3);
-  const double before = chains::kinetic_energy(open.model, open.model.velocity);
-  EXPECT_NEAR(chains::kinetic_energy(open.model, open.run.impact.velocity_after) / before, 1.0,
+  const double before = granular::kinetic_energy(open.model, open.model.velocity);
+  EXPECT_NEAR(granular::kinetic_energy(open.model, open.run.impact.velocity_after) / before, 1.0,
               1e-8);
 }
 

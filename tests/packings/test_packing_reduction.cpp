@@ -22,7 +22,7 @@ const Method kMethods[] = {
     {"adaptive", R"("impact": {"integrator": "adaptive", "tolerance": 1e-9})"}};
 
 // C beads in a chain struck from the left at 1 m/s by an equal bead.
-chains::ImpactOutcome chain_of(int beads, const std::string& impact) {
+granular::ImpactOutcome chain_of(int beads, const std::string& impact) {
   const chains::ChainScene scene = chains::parse_chain_scene(
       "{" + kSteel + R"(, "chain": {"segments": [{"count": )" + std::to_string(beads) +
           R"(, "radius": 0.005}]}, "strikers": [{"side": "left", "radius": 0.005, "velocity": 1.0}], )" +
@@ -46,7 +46,7 @@ Eigen::Index contact_between(const packings::PackingModel& model, Eigen::Index a
 
 // beads[k] of the packing is bead k of the chain; `axis` the line's direction (0 x, 1 y).
 void expect_chain(const PackingCase& packing, const std::vector<Eigen::Index>& beads, int axis,
-                  const chains::ImpactOutcome& chain) {
+                  const granular::ImpactOutcome& chain) {
   const packings::PackingModel& model = packing.model;
   const Eigen::VectorXd& v = packing.run.impact.velocity_after;
   const Eigen::Index striker = model.body_count() - 1;
@@ -132,7 +132,7 @@ TEST(PackingReduction, StaggeredStrikersMakeTheChainsImpacts) {
                                     impact + "}",
                                 "chain");
   const chains::ChainModel model = chains::build_chain_model(scene);
-  const chains::ImpactOutcome chain = chains::simulate_chain_impact(model, scene.impact);
+  const granular::ImpactOutcome chain = chains::simulate_chain_impact(model, scene.impact);
   // the left striker's impact sends the last bead at the right striker: they meet before the
   // striker would reach a bead at rest, and the beads meet again twice (4 impacts)
   ASSERT_GE(chain.impact_times.size(), 2u);

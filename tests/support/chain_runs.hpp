@@ -16,9 +16,9 @@ inline chains::ChainModel scene_model(const std::string& name) {
       chains::load_chain_scene(std::string(MIMPACT_SOURCE_DIR) + "/examples/scenes/" + name));
 }
 
-inline chains::ImpactOutcome run_chain(const chains::ChainModel& model, double delta_p,
-                                       numerics::ImpactObserver* observer = nullptr,
-                                       std::int64_t sample_every = 0) {
+inline granular::ImpactOutcome run_chain(const chains::ChainModel& model, double delta_p,
+                                         numerics::ImpactObserver* observer = nullptr,
+                                         std::int64_t sample_every = 0) {
   numerics::LzbOptions options;
   options.delta_p = delta_p;
   options.sample_every = sample_every;
@@ -28,7 +28,7 @@ inline chains::ImpactOutcome run_chain(const chains::ChainModel& model, double d
 // Relative to the momentum the bodies carry, sum m |v|: the total is zero when strikers meet
 // from both sides.
 // The adaptive LZB integrator at `tolerance`, through the kernel.
-inline chains::ImpactOutcome run_adaptive(const chains::ChainModel& model, double tolerance) {
+inline granular::ImpactOutcome run_adaptive(const chains::ChainModel& model, double tolerance) {
   plugins::LzbImpactOptions options;
   options.integrator = plugins::LzbIntegrator::adaptive;
   options.tolerance = tolerance;
@@ -36,16 +36,16 @@ inline chains::ImpactOutcome run_adaptive(const chains::ChainModel& model, doubl
 }
 
 inline double relative_momentum_change(const chains::ChainModel& model,
-                                       const chains::ImpactOutcome& impact) {
+                                       const granular::ImpactOutcome& impact) {
   const double before = chains::momentum(model, model.velocity);
   const double carried = chains::momentum(model, model.velocity.cwiseAbs());
   return std::abs(chains::momentum(model, impact.velocity_after) - before) / carried;
 }
 
 inline double kinetic_energy_ratio(const chains::ChainModel& model,
-                                   const chains::ImpactOutcome& impact) {
-  return chains::kinetic_energy(model, impact.velocity_after) /
-         chains::kinetic_energy(model, model.velocity);
+                                   const granular::ImpactOutcome& impact) {
+  return granular::kinetic_energy(model, impact.velocity_after) /
+         granular::kinetic_energy(model, model.velocity);
 }
 
 // ||a - b||_inf / ||b||_inf, the discrepancy of Nguyen & Brogliato (2011), eq. 47.

@@ -1,16 +1,16 @@
 #include "mimpact/models/bead_column.hpp"
 
-#include "mimpact/chains/hertz.hpp"
+#include "mimpact/granular/hertz.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
 
 namespace mimpact::models {
 
-double BeadColumn::mass() const { return chains::bead_mass(radius, {density, young, poisson}); }
+double BeadColumn::mass() const { return granular::bead_mass(radius, {density, young, poisson}); }
 
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> BeadColumn::build() const {
-  const chains::Material steel{density, young, poisson};
+  const granular::Material steel{density, young, poisson};
   auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
   std::vector<std::shared_ptr<kernel::DynamicalSystem>> bodies;
   for (int i = 0; i <= beads; ++i) {
@@ -24,8 +24,8 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> BeadColumn::build() const {
     system->add(bodies.back());
   }
   numerics::ContactLaw floor_law, bead_law;
-  floor_law.stiffness = chains::hertz_stiffness_wall(radius, steel, steel);
-  bead_law.stiffness = chains::hertz_stiffness(radius, steel, radius, steel);
+  floor_law.stiffness = granular::hertz_stiffness_wall(radius, steel, steel);
+  bead_law.stiffness = granular::hertz_stiffness(radius, steel, radius, steel);
   floor_law.restitution = bead_law.restitution = restitution;
   system->add(std::make_shared<kernel::Interaction>(
       bodies[0], std::make_shared<kernel::LinearRelation>(Eigen::RowVectorXd::Ones(1), -radius),

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "mimpact/chains/hertz.hpp"
+#include "mimpact/granular/hertz.hpp"
 #include "mimpact/kernel/lagrangian_ds.hpp"
 #include "mimpact/kernel/scleronomous_relation.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
@@ -48,11 +48,13 @@ struct BallPair {
 
 }  // namespace
 
-double NewtonsCradle::mass() const { return chains::bead_mass(radius, {density, young, poisson}); }
+double NewtonsCradle::mass() const {
+  return granular::bead_mass(radius, {density, young, poisson});
+}
 
 double NewtonsCradle::hertz_stiffness() const {
-  const chains::Material steel{density, young, poisson};
-  return chains::hertz_stiffness(radius, steel, radius, steel);
+  const granular::Material steel{density, young, poisson};
+  return granular::hertz_stiffness(radius, steel, radius, steel);
 }
 
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> NewtonsCradle::build() const {

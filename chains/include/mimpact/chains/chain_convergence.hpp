@@ -9,7 +9,7 @@
 #include "mimpact/analysis/lzb_tolerance_study.hpp"
 #include "mimpact/chains/chain_model.hpp"
 #include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/run_limits.hpp"
+#include "mimpact/granular/run_limits.hpp"
 
 // The convergence studies of a chain scene's LZB impact, as `mimpact converge`, `mimpact chain
 // --tolerance` and the Python module's converge() ask for them.
@@ -24,7 +24,7 @@ struct StudyRequest {
   std::string tolerance_name = "--tolerance";
   std::string first_name = "--from";
   std::string rows_name = "--halvings";
-  RunLimits limits;  // the memory the runs' samples may take
+  granular::RunLimits limits;  // the memory the runs' samples may take
 };
 
 // Whether a requested accuracy is met by the adaptive integrator's tolerance study rather than

@@ -9,8 +9,8 @@
 
 #include "mimpact/analysis/lzb_convergence.hpp"
 #include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/contact_model.hpp"
-#include "mimpact/chains/run_limits.hpp"
+#include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/run_limits.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 
@@ -20,7 +20,7 @@ namespace mimpact::chains {
 // either end first, a rigid wall may touch the last bead. Bodies left to right (a left
 // striker, the beads, a right striker); contact i joins bodies i and i + 1,
 // g_i = x_{i+1} - x_i - (R_i + R_{i+1}); the wall's contact is last, g = x_wall - x_N - R_N.
-struct ChainModel : ContactModel {
+struct ChainModel : granular::ContactModel {
   Eigen::VectorXd radius;    // m, per body
   Eigen::VectorXd position;  // m, of the centres at t = 0 (first bead at 0)
   bool has_wall = false;
@@ -30,7 +30,7 @@ struct ChainModel : ContactModel {
 
 // Throws InvalidInput for a chain that needs more memory than `limits` allow, and for bodies
 // whose masses leave double precision.
-ChainModel build_chain_model(const ChainScene& scene, const RunLimits& limits = {});
+ChainModel build_chain_model(const ChainScene& scene, const granular::RunLimits& limits = {});
 
 // The chain in the kernel's terms: one LagrangianLinearTIDS per body (no force), one
 // interaction per contact with a LinearRelation and an LzbLaw.

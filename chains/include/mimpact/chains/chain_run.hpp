@@ -7,29 +7,29 @@
 #include "mimpact/chains/chain_impact.hpp"
 #include "mimpact/chains/chain_model.hpp"
 #include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/impact_recorder.hpp"
-#include "mimpact/chains/run_limits.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
+#include "mimpact/granular/run_limits.hpp"
 
 // One run of a chain scene by the method it chooses: what `mimpact chain` and the Python
 // module's run_chain() share.
 namespace mimpact::chains {
 
 struct ChainRunOptions {
-  ImpactOverrides impact;  // over the scene's "impact" (resolve_impact)
-  bool record = true;      // sample the scene's "record" series
-  RunLimits limits;        // the memory the model and the recording may take
+  granular::ImpactOverrides impact;  // over the scene's "impact" (resolve_impact)
+  bool record = true;                // sample the scene's "record" series
+  granular::RunLimits limits;        // the memory the model and the recording may take
   // Sees the LZB samples too, at least every progress_every impulse steps (a progress report).
   numerics::ImpactObserver* progress = nullptr;
   std::int64_t progress_every = 2'000'000;
 };
 
 struct ChainRun {
-  ImpactOutcome impact;
-  Method method = Method::lzb;
+  granular::ImpactOutcome impact;
+  granular::Method method = granular::Method::lzb;
   plugins::LzbImpactOptions options;  // the impact's options, as resolved
   std::optional<double> delta_p;      // N s, of the impulse steps; none for the other methods
   bool recorded = false;              // series holds the scene's "record"
-  TimeSeries series;
+  granular::TimeSeries series;
 };
 
 // The LZB impact (impulse steps at delta_p, or the adaptive integrator) or the compliant

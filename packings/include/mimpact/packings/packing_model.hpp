@@ -4,8 +4,8 @@
 #include <memory>
 #include <vector>
 
-#include "mimpact/chains/contact_model.hpp"
-#include "mimpact/chains/run_limits.hpp"
+#include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/run_limits.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/packings/packing_scene.hpp"
 
@@ -31,7 +31,7 @@ struct PackingContact {
 // A planar packing of frictionless beads: two translations per bead (no friction, so rotation
 // plays no part), rigid walls, strikers flying at beads of the packing. Bodies are the beads
 // (a lattice row by row), then the strikers; coordinates (x_b, y_b) are 2b and 2b + 1.
-struct PackingModel : chains::ContactModel {
+struct PackingModel : granular::ContactModel {
   PackingModel() { dimension = 2; }
 
   Eigen::Index bead_count = 0;                        // of the packing, strikers apart
@@ -52,7 +52,7 @@ struct PackingModel : chains::ContactModel {
 // beads that overlap, a bead in a wall, an empty bead list, a striker whose place overlaps a
 // bead or a wall, and a packing struck by no approaching striker; and before building, for a
 // packing that needs more memory than `limits` allow.
-PackingModel build_packing_model(const PackingScene& scene, const chains::RunLimits& limits = {});
+PackingModel build_packing_model(const PackingScene& scene, const granular::RunLimits& limits = {});
 
 // The packing in the kernel's terms: one LagrangianLinearTIDS of two coordinates per body, one
 // interaction per contact with a LinearRelation (the frozen normal) and an LzbLaw.

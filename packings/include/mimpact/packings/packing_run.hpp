@@ -4,9 +4,9 @@
 #include <optional>
 #include <string>
 
-#include "mimpact/chains/impact_outcome.hpp"
-#include "mimpact/chains/run_limits.hpp"
-#include "mimpact/chains/time_series.hpp"
+#include "mimpact/granular/impact_outcome.hpp"
+#include "mimpact/granular/run_limits.hpp"
+#include "mimpact/granular/time_series.hpp"
 #include "mimpact/packings/packing_model.hpp"
 #include "mimpact/packings/packing_scene.hpp"
 
@@ -15,18 +15,18 @@
 namespace mimpact::packings {
 
 struct PackingRunOptions {
-  chains::ImpactOverrides impact;  // over the scene's "impact" (chains::resolve_impact)
-  bool record = true;              // sample the scene's "record"
-  chains::RunLimits limits;        // the memory the recording may take
+  granular::ImpactOverrides impact;  // over the scene's "impact" (granular::resolve_impact)
+  bool record = true;                // sample the scene's "record"
+  granular::RunLimits limits;        // the memory the recording may take
 };
 
 struct PackingRun {
-  chains::ImpactOutcome impact;
+  granular::ImpactOutcome impact;
   plugins::LzbImpactOptions options;  // the impact's options, as resolved
   std::optional<double> delta_p;      // N s, of the impulse steps; none for the other methods
   bool recorded = false;              // series (and frames, if asked for) hold the scene's record
-  chains::TimeSeries series;
-  chains::Frames frames;
+  granular::TimeSeries series;
+  granular::Frames frames;
 };
 
 // The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
@@ -54,7 +54,7 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
 std::string bodies_csv(const PackingModel& model);
 std::string contacts_csv(const PackingModel& model);
 // Frames as two tables: "time,F_0,...,F_m-1" and "time,vx_0,vy_0,...", one row per frame.
-std::string frame_forces_csv(const chains::Frames& frames);
-std::string frame_velocities_csv(const chains::Frames& frames);
+std::string frame_forces_csv(const granular::Frames& frames);
+std::string frame_velocities_csv(const granular::Frames& frames);
 
 }  // namespace mimpact::packings

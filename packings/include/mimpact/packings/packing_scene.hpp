@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/hertz.hpp"
 #include "mimpact/common/fields.hpp"
+#include "mimpact/granular/hertz.hpp"
+#include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/kernel/parameters.hpp"
 #include "mimpact/plugins/lzb_impact_options.hpp"
 
@@ -31,8 +31,8 @@ struct LatticeSpec {
   LatticeType type = LatticeType::square;
   int rows = 0;
   int columns = 0;
-  double radius = 0.0;        // a (m)
-  chains::Material material;  // the scene's "material" when the lattice gives none
+  double radius = 0.0;          // a (m)
+  granular::Material material;  // the scene's "material" when the lattice gives none
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -50,7 +50,7 @@ struct LatticeSpec {
 // the file's order.
 struct BeadListSpec {
   std::string file;  // relative to the scene file's directory
-  chains::Material material;
+  granular::Material material;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -72,7 +72,7 @@ struct WallSpec {
   std::optional<WallSide> side;
   std::vector<double> point;   // m, [x, y]
   std::vector<double> normal;  // [nx, ny], normalized when read
-  chains::Material material;
+  granular::Material material;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -91,7 +91,7 @@ struct StrikerSpec {
   double radius = 0.0;           // m
   std::vector<double> velocity;  // m/s, [vx, vy]
   double gap = 0.0;              // m between the striker and its target, >= 0
-  chains::Material material;
+  granular::Material material;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -127,18 +127,18 @@ struct RecordSpec {
 // A planar packing scene file. Bodies are the packing's beads (a lattice row by row, or the
 // bead list's order), then the strikers.
 struct PackingScene {
-  std::optional<chains::Material> material;  // of the bodies and walls that name none
+  std::optional<granular::Material> material;  // of the bodies and walls that name none
   std::optional<LatticeSpec> lattice;
   std::optional<BeadListSpec> beads;  // one of lattice and beads
   std::vector<WallSpec> walls;
   std::vector<StrikerSpec> strikers;
-  chains::ContactSpec contact;
-  // "impact": the options of the "lzb" impact problem (chains::resolve_impact merges what the
+  granular::ContactSpec contact;
+  // "impact": the options of the "lzb" impact problem (granular::resolve_impact merges what the
   // command line or Python chose over them)
   plugins::LzbImpactOptions impact;
   RecordSpec record;
-  chains::Method method = chains::Method::lzb;
-  chains::CompliantSpec compliant;
+  granular::Method method = granular::Method::lzb;
+  granular::CompliantSpec compliant;
   std::filesystem::path directory;  // of the scene file: bead lists are found from it
   std::string source = "scene";     // the file it was read from, for messages
 
@@ -157,10 +157,10 @@ struct PackingScene {
   }
 
   bool adaptive() const {
-    return method == chains::Method::lzb && impact.integrator == plugins::LzbIntegrator::adaptive;
+    return method == granular::Method::lzb && impact.integrator == plugins::LzbIntegrator::adaptive;
   }
   // the record of the chains' impact runs: the beads as bodies
-  chains::RecordSpec chain_record() const;
+  granular::RecordSpec chain_record() const;
 };
 
 // Reads a scene document; `directory` is where bead lists are looked for. Throws InvalidInput

@@ -2,13 +2,13 @@
 
 #include <string>
 
-#include "mimpact/chains/contact_model.hpp"
+#include "mimpact/granular/contact_model.hpp"
 
 // What a run may take of the machine. Every size and sampling of a scene is estimated before the
 // run starts and refused by name when the estimate exceeds the limit; the recorders count what
 // they keep as they go and stop the run where an estimate fell short. The message gives the
 // estimate, the limit and the option that raises it, for a user who means it.
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 struct RunLimits {
   double memory_gb = 4.0;                      // GB (1e9 bytes) a run may hold
@@ -54,4 +54,4 @@ class RecordingBudget {
   double kept_ = 0.0;  // bytes
 };
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 // Time series of a scene's impacts, against the time since the first impact (s): the force of
 // the recorded contacts (N) and the velocity of the recorded bodies (m/s, `dimension`
@@ -31,4 +31,4 @@ struct Frames {
   bool empty() const { return time.empty(); }
 };
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

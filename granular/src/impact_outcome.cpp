@@ -1,17 +1,17 @@
-#include "mimpact/chains/impact_outcome.hpp"
+#include "mimpact/granular/impact_outcome.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "mimpact/chains/impact_recorder.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 #include "mimpact/kernel/registry.hpp"
 #include "mimpact/kernel/simulation.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/plugins/register_plugins.hpp"
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 namespace {
 
@@ -289,28 +289,4 @@ CompliantRun simulate_compliant(const ContactModel& model,
   return run;
 }
 
-double EnergyLedger::imbalance() const {
-  return kinetic_before + potential_before + work_of_forces -
-         (kinetic_after + dissipated_total + potential_left);
-}
-
-EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impact) {
-  EnergyLedger ledger;
-  ledger.kinetic_before = kinetic_energy(model, model.velocity);
-  ledger.kinetic_after = kinetic_energy(model, impact.velocity_after);
-  const Eigen::Index m = model.contact_count();
-  const Eigen::VectorXd& stored_after = impact.lzb.stored_energy;
-  const Eigen::VectorXd stored_before = impact.stored_energy_at_start.size() == m
-                                            ? impact.stored_energy_at_start
-                                            : Eigen::VectorXd::Zero(m);
-  if (impact.lzb.work.size() != m || stored_after.size() != m)
-    throw Error("the impact's method kept no energy ledger (nonlinear relations)");
-  ledger.potential_before = stored_before.sum();
-  ledger.work_of_forces = impact.work_of_forces;
-  ledger.dissipated = impact.lzb.work + stored_before - stored_after;
-  ledger.dissipated_total = ledger.dissipated.sum();
-  ledger.potential_left = stored_after.sum();
-  return ledger;
-}
-
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

@@ -1,9 +1,9 @@
-#include "mimpact/chains/hertz.hpp"
+#include "mimpact/granular/hertz.hpp"
 
 #include <cmath>
 #include <numbers>
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 double bead_mass(double radius, const Material& material) {
   return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius * material.density;
@@ -22,4 +22,4 @@ double hertz_stiffness_wall(double radius, const Material& bead, const Material&
   return 4.0 / 3.0 * std::sqrt(radius) * effective_modulus(bead, wall);
 }
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

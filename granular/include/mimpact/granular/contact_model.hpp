@@ -8,7 +8,7 @@
 
 #include "mimpact/numerics/contact_law.hpp"
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 // What the impact runs read of a granular scene, in generalized coordinates: one per bead on a
 // line (ChainModel), two per bead in the plane (packings::PackingModel). Coordinate
@@ -65,4 +65,4 @@ void check_impact_scales(const ContactModel& model);
 void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_steps,
                    const std::string& field);
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

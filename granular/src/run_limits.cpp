@@ -1,4 +1,4 @@
-#include "mimpact/chains/run_limits.hpp"
+#include "mimpact/granular/run_limits.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "mimpact/common/error.hpp"
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 namespace {
 
@@ -70,4 +70,4 @@ void RecordingBudget::add(bool frame) {
     check_memory(kept_, "the recording (" + fields_ + ") outgrew its estimate: it", limits_);
 }
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

@@ -1,11 +1,11 @@
-#include "mimpact/chains/contact_model.hpp"
+#include "mimpact/granular/contact_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "mimpact/common/error.hpp"
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 double kinetic_energy(const ContactModel& model, const Eigen::VectorXd& velocity) {
   return 0.5 * model.mass.dot(velocity.cwiseAbs2());
@@ -92,4 +92,4 @@ void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_s
             " (raise it to allow more)"));
 }
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

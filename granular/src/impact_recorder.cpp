@@ -1,10 +1,10 @@
-#include "mimpact/chains/impact_recorder.hpp"
+#include "mimpact/granular/impact_recorder.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 namespace {
 
@@ -179,4 +179,4 @@ Frames ImpactRecorder::frames(const ImpactOutcome& impact) const {
   return frames;
 }
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

@@ -2,13 +2,13 @@
 
 #include <vector>
 
-#include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/contact_model.hpp"
-#include "mimpact/chains/impact_outcome.hpp"
-#include "mimpact/chains/run_limits.hpp"
-#include "mimpact/chains/time_series.hpp"
+#include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/impact_outcome.hpp"
+#include "mimpact/granular/run_limits.hpp"
+#include "mimpact/granular/scene_spec.hpp"
+#include "mimpact/granular/time_series.hpp"
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 // "record.interval = 1e-07 s, record.frames = 4": what sets the number of samples, for messages.
 std::string sampling_fields(const RecordSpec& record, bool by_time, int frame_every);
@@ -56,4 +56,4 @@ class ImpactRecorder : public numerics::ImpactObserver {
   RecordingBudget budget_;
 };
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

@@ -4,10 +4,10 @@
 #include <memory>
 #include <vector>
 
-#include "mimpact/chains/chain_scene.hpp"
-#include "mimpact/chains/contact_model.hpp"
-#include "mimpact/chains/run_limits.hpp"
-#include "mimpact/chains/time_series.hpp"
+#include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/run_limits.hpp"
+#include "mimpact/granular/scene_spec.hpp"
+#include "mimpact/granular/time_series.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 #include "mimpact/plugins/lzb_impact_problem.hpp"
@@ -15,7 +15,7 @@
 // The impact runs every granular scene shares (chains and planar packings): through the kernel,
 // by the LZB impact problem in the event-driven scheme or by the compliant contacts integrated
 // in time, and the energy ledger of their outcome.
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 // The outcome of a scene's impacts: the strikers fly to their targets (if there are gaps), the
 // shock crosses the touching beads; with strikers arriving at different times, one impact after
@@ -71,22 +71,4 @@ CompliantRun simulate_compliant(const ContactModel& model,
                                 const CompliantSpec& spec, const RecordSpec& record,
                                 int frame_every = 0, const RunLimits& limits = {});
 
-// Where the kinetic energy of a scene's impacts went (J):
-//   kinetic_before + potential_before + work_of_forces
-//     = kinetic_after + dissipated_total + potential_left,
-// to round-off for every method: each accounts the contacts' work by the trapezoidal rule over
-// its own steps, which the velocities follow exactly (docs/model.md, section 12).
-struct EnergyLedger {
-  double kinetic_before = 0.0, kinetic_after = 0.0;
-  double potential_before = 0.0;  // held by the contacts at the start (a precompression)
-  double work_of_forces = 0.0;    // done by the bodies' own forces (the precompression)
-  Eigen::VectorXd dissipated;     // per contact: its work + its potential energy before - after
-  double dissipated_total = 0.0;
-  double potential_left = 0.0;  // held by the contacts at the end (LZB: below its tolerance)
-  // the two sides' difference (J), round-off
-  double imbalance() const;
-};
-
-EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impact);
-
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

@@ -2,7 +2,7 @@
 
 #include "mimpact/common/fields.hpp"
 
-namespace mimpact::chains {
+namespace mimpact::granular {
 
 // An isotropic elastic material.
 struct Material {
@@ -32,4 +32,4 @@ double hertz_stiffness(double radius_a, const Material& a, double radius_b, cons
 // The same for a sphere against a flat rigid wall of the given material (R* = R).
 double hertz_stiffness_wall(double radius, const Material& bead, const Material& wall);
 
-}  // namespace mimpact::chains
+}  // namespace mimpact::granular

@@ -1,0 +1,158 @@
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "mimpact/common/error.hpp"
+#include "mimpact/common/fields.hpp"
+#include "mimpact/granular/contact_model.hpp"
+#include "mimpact/kernel/json_document.hpp"
+#include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/plugins/lzb_impact_options.hpp"
+
+// What every granular scene file holds beside its geometry (docs/scenes.md, docs/packings.md):
+// the contact law, the method and its options, what is recorded, and the reading of the file.
+// Every struct lists its fields once (visit_fields): the keys of the file, their checks and the
+// messages about them.
+namespace mimpact::granular {
+
+// The slowest striker (m/s): below 1e-100 the impact's energies m v^2 / 2 fall under double
+// precision's smallest numbers and the striker would count as at rest.
+inline constexpr double kSlowestStriker = 1e-100;
+
+// What a run records as time series: the force of these contacts and the velocity of these
+// bodies, every `every` impulse steps or every `interval` seconds.
+struct RecordSpec {
+  std::vector<int> contacts;
+  std::vector<int> bodies;
+  int every = 1;           // LZB impulse steps: one sample every this many steps
+  double interval = 1e-7;  // compliant and adaptive LZB: one sample every this long (s)
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("contacts", self.contacts, at_least(0));
+    field("bodies", self.bodies, at_least(0));
+    field("every", self.every, at_least(1, "impulse steps"));
+    field("interval", self.interval, positive("s"));
+  }
+};
+
+// How the impact is computed: the LZB impulse dynamics (the default) or the compliant contacts
+// integrated in time (its reference for e = 1; the only one for a precompressed chain).
+enum class Method { lzb, compliant };
+constexpr auto enum_names(Method) {
+  using Name = std::pair<Method, std::string_view>;
+  return std::array{Name{Method::lzb, "lzb"}, Name{Method::compliant, "compliant"}};
+}
+
+// What a contact that opens during the impact does when its bodies approach again: close its
+// gap first ("open", real beads), or close from where it stopped separating ("frozen", the
+// LZB impact's frozen configuration; docs/model.md, section 13).
+enum class Gaps { open, frozen };
+constexpr auto enum_names(Gaps) {
+  using Name = std::pair<Gaps, std::string_view>;
+  return std::array{Name{Gaps::open, "open"}, Name{Gaps::frozen, "frozen"}};
+}
+
+struct CompliantSpec {
+  double tolerance = 1e-10;        // relative error control of the integration
+  std::optional<double> end_time;  // s; required with a precompression
+  Gaps gaps = Gaps::open;
+  std::int64_t max_steps = 10'000'000;  // time steps before the run is abandoned
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    // below 1e-14 the error estimate of Dormand-Prince drowns in round-off: the run never ends
+    field("tolerance", self.tolerance,
+          within(1e-14, 1.0, {}, false, true).described("1e-14 <= tolerance < 1"));
+    field("end_time", self.end_time, positive("s"));
+    field("gaps", self.gaps);
+    field("max_steps", self.max_steps, at_least(1, "time steps"));
+  }
+};
+
+// Throws InvalidInput naming the scene file: "SOURCE: what".
+class SceneChecks {
+ public:
+  explicit SceneChecks(const std::string& source) : source_(source) {}
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InvalidInput(source_ + ": " + what);
+  }
+
+ private:
+  const std::string& source_;
+};
+
+struct ContactSpec {
+  numerics::ComplianceModel model = numerics::ComplianceModel::bi_stiffness;
+  double exponent = 1.5;
+  double restitution = 1.0;
+  // K (N/m^eta) of every contact; when absent, Hertz's, which needs exponent 3/2
+  std::optional<double> stiffness;
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("model", self.model);
+    // past 10, K delta^eta overflows for overlaps of a few radii
+    field("exponent", self.exponent,
+          within(0.0, 10.0, "1 linear, 3/2 Hertz", true).described("0 < eta <= 10"));
+    field("restitution", self.restitution, within(0.0, 1.0).described("0 <= e <= 1"));
+    field("stiffness", self.stiffness, positive("N/m^exponent"));
+  }
+
+  // Hertz's stiffness needs exponent 3/2: another exponent needs its stiffness.
+  void check(const SceneChecks& checks) const;
+  // The law of a contact whose Hertz stiffness is `hertz` (N/m^1.5): K the scene's, or Hertz's.
+  numerics::ContactLaw law(double hertz) const {
+    return {.stiffness = stiffness.value_or(hertz),
+            .exponent = exponent,
+            .restitution = restitution,
+            .model = model};
+  }
+};
+
+// A scene file's JSON: parse_json_document's limits, and its messages naming the file, line,
+// column and field.
+kernel::JsonDocument parse_scene_document(std::string_view text, const std::string& source);
+
+// Copies the top-level "material" of a scene document into every body that names none, so
+// that one field list reads every body alike. `bodies` are JSON pointers to a body or an array
+// of bodies ("/chain/segments"); throws InvalidInput naming the body when it needs the
+// top-level material and there is none.
+void lend_material(nlohmann::json& document, std::initializer_list<const char*> bodies,
+                   const std::string& source);
+
+// What a caller may choose over a scene's "impact": the command line's --delta-p, Python's
+// delta_p=.
+struct ImpactOverrides {
+  std::optional<double> delta_p;         // N s
+  std::string delta_p_name = "delta_p";  // what messages call it: "--delta-p"
+};
+
+// The scene's impact options with the overrides, checked by the one rule of the impact options
+// (plugins::LzbImpactOptions::check) for the LZB method; an override given to the compliant
+// method is refused. Throws InvalidInput naming `source` and each field where it was given.
+plugins::LzbImpactOptions resolve_impact(const plugins::LzbImpactOptions& impact, Method method,
+                                         const ImpactOverrides& overrides,
+                                         const std::string& source);
+// What messages call the impact options' fields, given the overrides.
+fields::Labels impact_labels(const ImpactOverrides& overrides);
+
+// The impulse steps' delta_p (N s) for the checks before a run: the options' delta_p, or
+// relative_delta_p times the natural impulse of the model's contacts; checked against the model
+// (check_delta_p, naming the field as `labels` does). InvalidInput when there is neither.
+double impulse_step(const ContactModel& model, const plugins::LzbImpactOptions& impact,
+                    const fields::Labels& labels);
+
+// A scene file's text; InvalidInput when it is not a regular file, is larger than 64 MB or
+// cannot be read.
+std::string read_scene_file(const std::filesystem::path& path);
+
+}  // namespace mimpact::granular

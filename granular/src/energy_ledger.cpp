@@ -1,0 +1,45 @@
+#include "mimpact/granular/energy_ledger.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "mimpact/common/error.hpp"
+
+namespace mimpact::granular {
+
+double EnergyLedger::imbalance() const {
+  return kinetic_before + potential_before + work_of_forces -
+         (kinetic_after + dissipated_total + potential_left);
+}
+
+EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impact) {
+  EnergyLedger ledger;
+  ledger.kinetic_before = kinetic_energy(model, model.velocity);
+  ledger.kinetic_after = kinetic_energy(model, impact.velocity_after);
+  const Eigen::Index m = model.contact_count();
+  const Eigen::VectorXd& stored_after = impact.lzb.stored_energy;
+  const Eigen::VectorXd stored_before = impact.stored_energy_at_start.size() == m
+                                            ? impact.stored_energy_at_start
+                                            : Eigen::VectorXd::Zero(m);
+  if (impact.lzb.work.size() != m || stored_after.size() != m)
+    throw Error("the impact's method kept no energy ledger (nonlinear relations)");
+  ledger.potential_before = stored_before.sum();
+  ledger.work_of_forces = impact.work_of_forces;
+  ledger.dissipated = impact.lzb.work + stored_before - stored_after;
+  ledger.dissipated_total = ledger.dissipated.sum();
+  ledger.potential_left = stored_after.sum();
+  return ledger;
+}
+
+nlohmann::ordered_json ledger_json(const EnergyLedger& ledger) {
+  const Eigen::VectorXd& d = ledger.dissipated;
+  return {{"kinetic_before", ledger.kinetic_before},
+          {"potential_before", ledger.potential_before},
+          {"work_of_forces", ledger.work_of_forces},
+          {"kinetic_after", ledger.kinetic_after},
+          {"dissipated", std::vector<double>(d.data(), d.data() + d.size())},
+          {"dissipated_total", ledger.dissipated_total},
+          {"potential_left", ledger.potential_left}};
+}
+
+}  // namespace mimpact::granular
