@@ -24,17 +24,31 @@ namespace {
 
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
-using Point = bg::model::point<double, 2, bg::cs::cartesian>;
+// three dimensions whatever the packing's (a planar packing's third coordinate is 0)
+using Point = bg::model::point<double, 3, bg::cs::cartesian>;
 using Box = bg::model::box<Point>;
 using Entry = std::pair<Point, Eigen::Index>;
 using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
 
 struct Body {
-  Eigen::Vector2d centre;
+  Vector centre;
   double radius;
   granular::Material material;
-  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+  Vector velocity = Vector::Zero(centre.size());
 };
+
+Vector planar(double x, double y) {
+  Vector v(2);
+  v << x, y;
+  return v;
+}
+
+// the R-tree's point of `centre`, shifted by `by` along every axis
+Point point_of(const Vector& centre, double by = 0.0) {
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  at.head(centre.size()) = centre;
+  return Point(at(0) + by, at(1) + by, at(2) + by);
+}
 
 std::string bead_name(const PackingModel& model, Eigen::Index body) {
   if (body >= model.bead_count) return "striker " + std::to_string(body - model.bead_count);
@@ -52,7 +66,7 @@ std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
   for (int r = 0; r < lattice.rows; ++r)
     for (int c = 0; c < lattice.columns; ++c) {
       const double shift = hexagonal && r % 2 == 1 ? a : 0.0;
-      beads.push_back({{2.0 * a * c + shift, row_pitch * r}, a, lattice.material});
+      beads.push_back({planar(2.0 * a * c + shift, row_pitch * r), a, lattice.material});
     }
   return beads;
 }
@@ -126,7 +140,7 @@ std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::
     }
     if (count != 3) fail(number, std::to_string(count) + " columns; allowed: x,y,radius");
     if (!(values[2] > 0.0)) fail(number, invalid_value_message("radius", values[2], "> 0 (m)"));
-    beads.push_back({{values[0], values[1]}, values[2], list.material});
+    beads.push_back({planar(values[0], values[1]), values[2], list.material});
     if (beads.size() % 100'000 == 0)
       granular::check_memory(double(beads.size()) * bead_bytes(),
                              "beads.file (" + std::to_string(beads.size()) + " beads so far)",
@@ -141,15 +155,14 @@ Tree index_of(const std::vector<Body>& bodies) {
   std::vector<Entry> entries;
   entries.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    entries.emplace_back(Point(bodies[i].centre.x(), bodies[i].centre.y()), Eigen::Index(i));
+    entries.emplace_back(point_of(bodies[i].centre), Eigen::Index(i));
   return Tree(entries.begin(), entries.end());  // packed (bulk) loading
 }
 
 // Calls visit(j) for every body of `tree` whose centre lies within `reach` of `centre`.
 template <class Visit>
-void near(const Tree& tree, const Eigen::Vector2d& centre, double reach, Visit&& visit) {
-  const Box box(Point(centre.x() - reach, centre.y() - reach),
-                Point(centre.x() + reach, centre.y() + reach));
+void near(const Tree& tree, const Vector& centre, double reach, Visit&& visit) {
+  const Box box(point_of(centre, -reach), point_of(centre, reach));
   for (auto it = tree.qbegin(bgi::intersects(box)); it != tree.qend(); ++it) visit(it->second);
 }
 
@@ -188,10 +201,10 @@ class PackingBuilder {
 
   // Two bodies touch within kTouching of their radii: a contact at the distance of their
   // centres; closer, they overlap.
-  void touch(Eigen::Index i, Eigen::Index j, const Eigen::Vector2d& centre_i) {
+  void touch(Eigen::Index i, Eigen::Index j, const Vector& centre_i) {
     const Body& a = bodies_[std::size_t(i)];
     const Body& b = bodies_[std::size_t(j)];
-    const Eigen::Vector2d between = b.centre - centre_i;
+    const Vector between = b.centre - centre_i;
     const double distance = between.norm(), reach = a.radius + b.radius;
     if (distance > reach * (1.0 + kTouching)) return;
     if (distance < reach * (1.0 - kTouching))
@@ -229,14 +242,14 @@ class PackingBuilder {
   }
 
   // the line of a wall given by its side: touching the outermost beads
-  void wall_line(const WallSpec& wall, Eigen::Vector2d& point, Eigen::Vector2d& normal) const {
+  void wall_line(const WallSpec& wall, Vector& point, Vector& normal) const {
     if (!wall.side) {
-      point = {wall.point[0], wall.point[1]};
-      normal = Eigen::Vector2d(wall.normal[0], wall.normal[1]).normalized();
+      point = planar(wall.point[0], wall.point[1]);
+      normal = planar(wall.normal[0], wall.normal[1]).normalized();
       return;
     }
-    static const Eigen::Vector2d kNormals[] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}};
-    normal = kNormals[int(*wall.side)];
+    static const double kNormals[][2] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}};
+    normal = planar(kNormals[int(*wall.side)][0], kNormals[int(*wall.side)][1]);
     // the plane lies where the beads reach furthest against the normal
     double reach = INFINITY;
     for (Eigen::Index i = 0; i < model_.bead_count; ++i)
@@ -247,7 +260,7 @@ class PackingBuilder {
 
   void place_walls() {
     for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
-      Eigen::Vector2d point, normal;
+      Vector point, normal;
       wall_line(scene_.walls[w], point, normal);
       model_.wall_points.push_back(point);
       model_.wall_normals.push_back(normal);
@@ -278,10 +291,10 @@ class PackingBuilder {
         throw InvalidInput(invalid_value_message(
             name + ".target[0]", spec.target[0],
             "a bead in [0, " + std::to_string(model_.bead_count) + "): aimed at nothing"));
-      const Eigen::Vector2d velocity(spec.velocity[0], spec.velocity[1]);
-      const Eigen::Vector2d direction = velocity.normalized();
+      const Vector velocity = planar(spec.velocity[0], spec.velocity[1]);
+      const Vector direction = velocity.normalized();
       const Body& aimed = bodies_[std::size_t(target)];
-      const Eigen::Vector2d arrival = aimed.centre - (aimed.radius + spec.radius) * direction;
+      const Vector arrival = aimed.centre - (aimed.radius + spec.radius) * direction;
       const Eigen::Index body = Eigen::Index(bodies_.size());
       bodies_.push_back({arrival - spec.gap * direction, spec.radius, spec.material, velocity});
       largest_radius_ = std::max(largest_radius_, spec.radius);
@@ -293,11 +306,11 @@ class PackingBuilder {
   }
 
   // contact j-striker with the normal at arrival, g = 0 there; an overlap there is an error
-  void touch_striker(Eigen::Index striker, Eigen::Index bead, const Eigen::Vector2d& arrival,
+  void touch_striker(Eigen::Index striker, Eigen::Index bead, const Vector& arrival,
                      const std::string& name) {
     const Body& s = bodies_[std::size_t(striker)];
     const Body& b = bodies_[std::size_t(bead)];
-    const Eigen::Vector2d between = b.centre - arrival;
+    const Vector between = b.centre - arrival;
     const double distance = between.norm(), reach = s.radius + b.radius;
     if (distance > reach * (1.0 + kTouching)) return;
     if (distance < reach * (1.0 - kTouching))
@@ -305,7 +318,7 @@ class PackingBuilder {
                          to_text(reach - distance) +
                          " m where it reaches its target; allowed: a striker that touches its "
                          "target and overlaps no other bead");
-    const Eigen::Vector2d normal = -between / distance;  // from the bead to the striker
+    const Vector normal = -between / distance;  // from the bead to the striker
     // g = n . (q_striker - q_bead) - rest, zero at arrival
     add_contact({.first = bead,
                  .second = striker,
@@ -331,10 +344,11 @@ class PackingBuilder {
 
   void assemble() {
     const Eigen::Index n = Eigen::Index(bodies_.size()), m = model_.contact_count();
+    const int d = model_.dimension;
     model_.radius.resize(n);
-    model_.position.resize(n, 2);
-    model_.mass.resize(2 * n);
-    model_.velocity.resize(2 * n);
+    model_.position.resize(n, d);
+    model_.mass.resize(d * n);
+    model_.velocity.resize(d * n);
     for (Eigen::Index b = 0; b < n; ++b) {
       const Body& body = bodies_[std::size_t(b)];
       const double mass = granular::bead_mass(body.radius, body.material);
@@ -344,13 +358,13 @@ class PackingBuilder {
                            "; check its radius and density");
       model_.radius(b) = body.radius;
       model_.position.row(b) = body.centre.transpose();
-      model_.mass.segment<2>(2 * b).setConstant(mass);
-      model_.velocity.segment<2>(2 * b) = body.velocity;
+      model_.mass.segment(d * b, d).setConstant(mass);
+      model_.velocity.segment(d * b, d) = body.velocity;
     }
     std::vector<Eigen::Triplet<double>> gradients;
-    auto add = [&](Eigen::Index body, Eigen::Index contact, const Eigen::Vector2d& direction) {
-      for (int k = 0; k < 2; ++k)  // orthogonal contacts share no entry (a square lattice)
-        if (direction(k) != 0.0) gradients.emplace_back(2 * body + k, contact, direction(k));
+    auto add = [&](Eigen::Index body, Eigen::Index contact, const Vector& direction) {
+      for (int k = 0; k < d; ++k)  // orthogonal contacts share no entry (a square lattice)
+        if (direction(k) != 0.0) gradients.emplace_back(d * body + k, contact, direction(k));
     };
     for (Eigen::Index c = 0; c < m; ++c) {
       const PackingContact& contact = model_.contacts[std::size_t(c)];
@@ -361,7 +375,7 @@ class PackingBuilder {
         add(contact.second, c, contact.normal);
       }
     }
-    model_.W.resize(2 * n, m);
+    model_.W.resize(d * n, m);
     model_.W.setFromTriplets(gradients.begin(), gradients.end());
     model_.H = numerics::assemble_delassus(model_.W, model_.mass.cwiseInverse());
     model_.u_minus = model_.W.transpose() * model_.velocity;
@@ -396,18 +410,18 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const Pac
   auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
   std::vector<std::shared_ptr<kernel::DynamicalSystem>> bodies;
   const Eigen::Index n = model.body_count();
+  const int d = model.dimension;
   for (Eigen::Index b = 0; b < n; ++b) {
     kernel::LagrangianLinearTIDS::Matrices matrices;
-    matrices.mass = model.mass(2 * b) * Eigen::Matrix2d::Identity();
+    matrices.mass = model.mass(d * b) * Eigen::MatrixXd::Identity(d, d);
     bodies.push_back(std::make_shared<kernel::LagrangianLinearTIDS>(
-        Eigen::Vector2d(model.position.row(b).transpose()),
-        Eigen::Vector2d(PackingModel::of(model.velocity, b)), matrices,
-        "body " + std::to_string(b)));
+        Eigen::VectorXd(model.position.row(b).transpose()),
+        Eigen::VectorXd(model.of(model.velocity, b)), matrices, "body " + std::to_string(b)));
     system->add(bodies.back());
   }
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
     const PackingContact& contact = model.contacts[c];
-    const Eigen::Vector2d& n_c = contact.normal;
+    const Vector& n_c = contact.normal;
     auto law = std::make_shared<plugins::LzbLaw>(model.laws[c]);
     const std::string name = "contact " + std::to_string(c);
     if (contact.second < 0) {
@@ -415,7 +429,8 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const Pac
       system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
                                                         relation, law, name));
     } else {
-      Eigen::RowVector4d row(-n_c.x(), -n_c.y(), n_c.x(), n_c.y());
+      Eigen::RowVectorXd row(2 * d);
+      row << -n_c.transpose(), n_c.transpose();
       auto relation = std::make_shared<kernel::LinearRelation>(row, -contact.rest);
       system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
                                                         bodies[std::size_t(contact.second)],
@@ -425,10 +440,10 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const Pac
   return system;
 }
 
-Eigen::Vector2d momentum(const PackingModel& model, const Eigen::VectorXd& velocity) {
-  Eigen::Vector2d total = Eigen::Vector2d::Zero();
+Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity) {
+  Vector total = Vector::Zero(model.dimension);
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
-    total += model.mass(2 * b) * PackingModel::of(velocity, b);
+    total += model.mass(model.dimension * b) * model.of(velocity, b);
   return total;
 }
 

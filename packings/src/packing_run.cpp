@@ -48,13 +48,50 @@ PackingRun run_lzb(const PackingScene& scene, const PackingModel& model,
   return run;
 }
 
-std::vector<double> pair(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
+std::vector<double> components(const Vector& v) { return {v.data(), v.data() + v.size()}; }
+
+// "[a, b]" (or "[a, b, c]"), each component printed with `format`
+std::string bracketed(const Vector& v, const char* format) {
+  std::string text = "[";
+  char number[32];
+  for (Eigen::Index k = 0; k < v.size(); ++k) {
+    std::snprintf(number, sizeof number, format, v(k));
+    if (k > 0) text += ", ";
+    text += number;
+  }
+  return text + "]";
+}
+
+// "x,y" (or "x,y,z") with `prefix` before each: a CSV header's coordinates
+std::string axis_names(const std::string& prefix, int dimension) {
+  static const char* const kAxes[] = {"x", "y", "z"};
+  std::string text;
+  for (int k = 0; k < dimension; ++k) {
+    if (k > 0) text += ",";
+    text += prefix;
+    text += kAxes[k];
+  }
+  return text;
+}
+
+// ",cell" at the end of a CSV line
+void add_cell(std::string& line, const std::string& cell) {
+  line += ',';
+  line += cell;
+}
+
+// %.17g: every double read back to the bit
+std::string full_precision(double value) {
+  char number[32];
+  std::snprintf(number, sizeof number, "%.17g", value);
+  return number;
+}
 
 // [[vx, vy], ...] per body
 nlohmann::ordered_json per_body(const PackingModel& model, const Eigen::VectorXd& values) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
-    list.push_back(pair(PackingModel::of(values, b)));
+    list.push_back(components(model.of(values, b)));
   return list;
 }
 
@@ -123,7 +160,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       entry["second"] = contact.second;
     else
       entry["wall"] = contact.wall;
-    entry["normal"] = pair(contact.normal);
+    entry["normal"] = components(contact.normal);
     entry["max_force"] = impact.lzb.max_force(c);
     entry["time_of_max"] = impact.lzb.time_of_max_force(c);
     entry["impulse"] = impact.lzb.impulse(c);
@@ -158,8 +195,8 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
         {"after", granular::kinetic_energy(model, after)},
         {"residual_potential", impact.lzb.residual_energy}}},
       {"momentum",
-       {{"before", pair(momentum(model, model.velocity))},
-        {"after", pair(momentum(model, after))}}},
+       {{"before", components(momentum(model, model.velocity))},
+        {"after", components(momentum(model, after))}}},
       {"energy", granular::ledger_json(granular::energy_ledger(model, impact))},
       {"wall_time", impact.wall_time},
       {"contacts", contacts}};
@@ -171,13 +208,11 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
   const granular::ImpactOutcome& impact = run.impact;
   const double before = granular::kinetic_energy(model, model.velocity);
   const double after = granular::kinetic_energy(model, impact.velocity_after);
-  const Eigen::Vector2d p0 = momentum(model, model.velocity);
-  const Eigen::Vector2d p1 = momentum(model, impact.velocity_after);
   Eigen::Index fastest = 0;
   double top = 0.0;
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
-    if (PackingModel::of(impact.velocity_after, b).norm() > top) {
-      top = PackingModel::of(impact.velocity_after, b).norm();
+    if (model.of(impact.velocity_after, b).norm() > top) {
+      top = model.of(impact.velocity_after, b).norm();
       fastest = b;
     }
   char text[1024];
@@ -186,45 +221,56 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
       "%lld beads, %lld strikers, %lld contacts, %s\n"
       "%lld steps, %.1f contacts per step, %lld contacts reached, in %.3g s of computation; "
       "the impact lasts %.6g s (%s)\n"
-      "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum [%.9g, %.9g] -> [%.9g, %.9g] N s\n"
-      "fastest body after the impact: %lld, [%.6g, %.6g] m/s (all in summary.json)\n",
+      "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum %s -> %s N s\n"
+      "fastest body after the impact: %lld, %s m/s (all in summary.json)\n",
       (long long)model.bead_count, (long long)(model.body_count() - model.bead_count),
       (long long)model.contact_count(), method_name(scene, run).c_str(),
       (long long)impact.lzb.steps, contacts_per_step(impact), (long long)contacts_reached(impact),
       impact.wall_time, impact.lzb.duration,
       impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
                              : std::string(numerics::to_string(impact.lzb.status)).c_str(),
-      before, after, 100.0 * (after / before - 1.0), p0.x(), p0.y(), p1.x(), p1.y(),
-      (long long)fastest, PackingModel::of(impact.velocity_after, fastest).x(),
-      PackingModel::of(impact.velocity_after, fastest).y());
+      before, after, 100.0 * (after / before - 1.0),
+      bracketed(momentum(model, model.velocity), "%.9g").c_str(),
+      bracketed(momentum(model, impact.velocity_after), "%.9g").c_str(), (long long)fastest,
+      bracketed(model.of(impact.velocity_after, fastest), "%.6g").c_str());
   return text;
 }
 
 std::string bodies_csv(const PackingModel& model) {
-  std::string text = "body,x,y,radius,mass\n";
-  char line[160];
+  const int d = model.dimension;
+  std::string text = "body";
+  add_cell(text, axis_names("", d));
+  text += ",radius,mass\n";
   for (Eigen::Index b = 0; b < model.body_count(); ++b) {
-    std::snprintf(line, sizeof line, "%lld,%.17g,%.17g,%.17g,%.17g\n", (long long)b,
-                  model.position(b, 0), model.position(b, 1), model.radius(b), model.mass(2 * b));
-    text += line;
+    text += std::to_string(b);
+    for (int k = 0; k < d; ++k) add_cell(text, full_precision(model.position(b, k)));
+    add_cell(text, full_precision(model.radius(b)));
+    add_cell(text, full_precision(model.mass(d * b)));
+    text += '\n';
   }
   return text;
 }
 
 std::string contacts_csv(const PackingModel& model) {
-  std::string text = "contact,first,second,wall,nx,ny,x,y\n";
-  char line[200];
+  const int d = model.dimension;
+  std::string text = "contact,first,second,wall";
+  add_cell(text, axis_names("n", d));
+  add_cell(text, axis_names("", d));
+  text += '\n';
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
     const PackingContact& contact = model.contacts[c];
     // where it touches: the first body's surface along the normal (against a wall, its
     // surface towards the wall)
-    const Eigen::Vector2d centre = model.position.row(contact.first).transpose();
+    const Vector centre = model.position.row(contact.first).transpose();
     const double side = contact.second >= 0 ? 1.0 : -1.0;
-    const Eigen::Vector2d at = centre + side * model.radius(contact.first) * contact.normal;
-    std::snprintf(line, sizeof line, "%zu,%lld,%lld,%d,%.17g,%.17g,%.17g,%.17g\n", c,
-                  (long long)contact.first, (long long)contact.second, contact.wall,
-                  contact.normal.x(), contact.normal.y(), at.x(), at.y());
-    text += line;
+    const Vector at = centre + side * model.radius(contact.first) * contact.normal;
+    text += std::to_string(c);
+    add_cell(text, std::to_string(contact.first));
+    add_cell(text, std::to_string(contact.second));
+    add_cell(text, std::to_string(contact.wall));
+    for (int k = 0; k < d; ++k) add_cell(text, full_precision(contact.normal(k)));
+    for (int k = 0; k < d; ++k) add_cell(text, full_precision(at(k)));
+    text += '\n';
   }
   return text;
 }

@@ -60,7 +60,7 @@ void expect_chain(const PackingCase& packing, const std::vector<Eigen::Index>& b
   double others = 0.0;
   for (Eigen::Index b = 0; b < model.bead_count; ++b)
     if (std::find(beads.begin(), beads.end(), b) == beads.end())
-      others = std::max(others, packings::PackingModel::of(v, b).norm());
+      others = std::max(others, model.of(v, b).norm());
   EXPECT_EQ(others, 0.0);
   const Eigen::VectorXd& peak = packing.run.impact.lzb.max_force;
   const double largest = chain.lzb.max_force.maxCoeff();

@@ -16,6 +16,9 @@ namespace mimpact::packings {
 // to 1e-15; a bead list written with 10 significant digits still touches.
 constexpr double kTouching = 1e-9;
 
+// A point or a direction of the packing's space: `dimension` components (2 or 3), on the stack.
+using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
+
 // One contact of the packing: two bodies, or a body and a wall. The normal is frozen at the
 // configuration of the impact (the LZB model's: the impact takes no time, so the bodies do not
 // move; docs/model.md, section 13): g = n . (q_second - q_first) - rest for two bodies,
@@ -24,26 +27,27 @@ struct PackingContact {
   Eigen::Index first = 0;
   Eigen::Index second = -1;  // -1: a wall
   int wall = -1;             // the wall's index in the scene, or -1
-  Eigen::Vector2d normal;    // unit, from first to second (or the wall's, towards the beads)
+  Vector normal;             // unit, from first to second (or the wall's, towards the beads)
   double rest = 0.0;         // m: g = 0 at the configuration the contact closes in
 };
 
-// A planar packing of frictionless beads: two translations per bead (no friction, so rotation
-// plays no part), rigid walls, strikers flying at beads of the packing. Bodies are the beads
-// (a lattice row by row), then the strikers; coordinates (x_b, y_b) are 2b and 2b + 1.
+// A packing of frictionless beads: one translation per dimension and bead (no friction, so
+// rotation plays no part), rigid walls, strikers flying at beads of the packing. Bodies are the
+// beads (a lattice row by row), then the strikers; coordinate d b + k is component k of body b
+// (d = dimension: 2 for the planar packings of the scenes). One code path for any dimension.
 struct PackingModel : granular::ContactModel {
   PackingModel() { dimension = 2; }
 
-  Eigen::Index bead_count = 0;                        // of the packing, strikers apart
-  Eigen::VectorXd radius;                             // m, per body
-  Eigen::Matrix<double, Eigen::Dynamic, 2> position;  // m, of the centres at t = 0, per body
+  Eigen::Index bead_count = 0;  // of the packing, strikers apart
+  Eigen::VectorXd radius;       // m, per body
+  Eigen::MatrixXd position;     // m, of the centres at t = 0: a row per body
   std::vector<PackingContact> contacts;
-  std::vector<Eigen::Vector2d> wall_points, wall_normals;  // m; unit, towards the beads
-  int rows = 0, columns = 0;                               // of a lattice (0 for a bead list)
+  std::vector<Vector> wall_points, wall_normals;  // m; unit, towards the beads
+  int rows = 0, columns = 0;                      // of a lattice (0 for a bead list)
 
-  // the body's velocity (m/s) in `velocity` (per coordinate)
-  static Eigen::Vector2d of(const Eigen::VectorXd& velocity, Eigen::Index body) {
-    return velocity.segment<2>(2 * body);
+  // body b's components of `values` (per coordinate: velocities, impulses)
+  Vector of(const Eigen::VectorXd& values, Eigen::Index body) const {
+    return values.segment(dimension * body, dimension);
   }
 };
 
@@ -54,12 +58,12 @@ struct PackingModel : granular::ContactModel {
 // packing that needs more memory than `limits` allow.
 PackingModel build_packing_model(const PackingScene& scene, const granular::RunLimits& limits = {});
 
-// The packing in the kernel's terms: one LagrangianLinearTIDS of two coordinates per body, one
-// interaction per contact with a LinearRelation (the frozen normal) and an LzbLaw.
+// The packing in the kernel's terms: one LagrangianLinearTIDS of `dimension` coordinates per body,
+// one interaction per contact with a LinearRelation (the frozen normal) and an LzbLaw.
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const PackingModel& model);
 
 // Total momentum (N s) of the bodies moving with `velocity` (per coordinate).
-Eigen::Vector2d momentum(const PackingModel& model, const Eigen::VectorXd& velocity);
+Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity);
 
 // The body of bead (row, column) of a lattice, or bead `index` of a bead list.
 Eigen::Index body_of_target(const PackingModel& model, const std::vector<int>& target);
