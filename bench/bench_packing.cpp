@@ -31,7 +31,7 @@ void run(benchmark::State& state, const std::string& impact) {
   const packings::PackingScene scene =
       packings::parse_packing_scene(hexagon(side, impact), "bench packing");
   const packings::PackingModel model = packings::build_packing_model(scene);
-  packings::PackingRun run;
+  granular::SceneRun run;
   for (auto _ : state) {
     run = packings::run_packing_scene(scene, model);
     benchmark::DoNotOptimize(run.impact.velocity_after.data());

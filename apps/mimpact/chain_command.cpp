@@ -152,11 +152,11 @@ int chain_command(const std::vector<std::string>& arguments) {
     warn_if_coarse(delta_p, granular::natural_impulse(model), quiet);
   }
   ProgressReporter progress;
-  chains::ChainRunOptions run_options;
+  granular::SceneRunOptions run_options;
   run_options.record = writes_series;
   run_options.limits = limits;
   run_options.progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr;
-  chains::ChainRun run = chains::run_chain_scene(scene, model, run_options);
+  granular::SceneRun run = chains::run_chain_scene(scene, model, run_options);
   const granular::ImpactOutcome& impact = run.impact;
   const granular::TimeSeries& series = run.series;
   nlohmann::ordered_json summary = chains::run_summary(model, run);

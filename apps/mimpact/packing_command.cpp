@@ -18,7 +18,7 @@ namespace {
 // Everything a run writes into --out: complete or not at all.
 std::map<std::string, std::string> output_files(const nlohmann::ordered_json& summary,
                                                 const packings::PackingModel& model,
-                                                const packings::PackingRun& run) {
+                                                const granular::SceneRun& run) {
   std::map<std::string, std::string> files{{"summary.json", summary.dump(2) + "\n"},
                                            {"bodies.csv", packings::bodies_csv(model)},
                                            {"contacts.csv", packings::contacts_csv(model)}};
@@ -65,11 +65,11 @@ int packing_command(const std::vector<std::string>& arguments) {
       !scene.record.contacts.empty() || !scene.record.beads.empty() || scene.record.frames > 0;
   if (recording && out.empty() && !quiet)
     std::cerr << "mimpact packing: \"record\" needs --out DIR to write its series; ignored\n";
-  packings::PackingRunOptions run_options;
+  granular::SceneRunOptions run_options;
   run_options.impact = overrides;
   run_options.record = recording && !out.empty();
   run_options.limits = limits;
-  const packings::PackingRun run = packings::run_packing_scene(scene, model, run_options);
+  const granular::SceneRun run = packings::run_packing_scene(scene, model, run_options);
   const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
   if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
   if (run.impact.lzb.status != numerics::LzbStatus::terminated)

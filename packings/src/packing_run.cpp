@@ -25,29 +25,6 @@ void check_record(const PackingScene& scene, const PackingModel& model) {
   check(scene.record.beads, "beads", model.body_count(), "body (beads, then strikers)");
 }
 
-PackingRun run_lzb(const PackingScene& scene, const PackingModel& model,
-                   const PackingRunOptions& options, plugins::LzbImpactOptions impact,
-                   bool record) {
-  PackingRun run;
-  run.options = impact;
-  if (!scene.adaptive()) {
-    const double delta_p =
-        granular::impulse_step(model, impact, granular::impact_labels(options.impact));
-    if (impact.delta_p) run.delta_p = delta_p;
-  }
-  granular::ImpactRecorder recorder(model, scene.chain_record(), scene.record.frames,
-                                    options.limits);
-  if (record) recorder.configure(impact);
-  run.impact = granular::simulate_impacts(model, build_packing_system(model), impact,
-                                          record ? &recorder : nullptr);
-  if (record) {
-    run.series = recorder.series(run.impact);
-    run.frames = recorder.frames(run.impact);
-  }
-  run.recorded = record;
-  return run;
-}
-
 std::vector<double> components(const Vector& v) { return {v.data(), v.data() + v.size()}; }
 
 // "[a, b]" (or "[a, b, c]"), each component printed with `format`
@@ -95,7 +72,7 @@ nlohmann::ordered_json per_body(const PackingModel& model, const Eigen::VectorXd
   return list;
 }
 
-std::string method_name(const PackingScene& scene, const PackingRun& run) {
+std::string method_name(const PackingScene& scene, const granular::SceneRun& run) {
   if (scene.adaptive())
     return "adaptive LZB, tolerance " + to_text(run.options.adaptive_tolerance());
   if (run.delta_p) return "LZB impulse steps, delta_p = " + to_text(*run.delta_p) + " N s";
@@ -128,28 +105,21 @@ granular::TimeSeries frame_table(const granular::Frames& frames, bool forces) {
 
 }  // namespace
 
-PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& model,
-                             const PackingRunOptions& options) {
+granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingModel& model,
+                                     const granular::SceneRunOptions& options) {
   check_record(scene, model);
-  const bool record = options.record && (!scene.record.contacts.empty() ||
-                                         !scene.record.beads.empty() || scene.record.frames > 0);
-  const plugins::LzbImpactOptions impact =
-      granular::resolve_impact(scene.impact, scene.method, options.impact, scene.source);
-  if (scene.method == granular::Method::lzb) return run_lzb(scene, model, options, impact, record);
-  granular::CompliantRun compliant =
-      granular::simulate_compliant(model, build_packing_system(model), scene.compliant,
-                                   record ? scene.chain_record() : granular::RecordSpec{},
-                                   record ? scene.record.frames : 0, options.limits);
-  PackingRun run;
-  run.impact = std::move(compliant.impact);
-  run.series = std::move(compliant.series);
-  run.frames = std::move(compliant.frames);
-  run.recorded = record;
-  return run;
+  return granular::run_scene(model, build_packing_system(model),
+                             {.impact = scene.impact,
+                              .method = scene.method,
+                              .compliant = scene.compliant,
+                              .record = scene.chain_record(),
+                              .frame_every = scene.record.frames,
+                              .source = scene.source},
+                             options);
 }
 
 nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
-                                       const PackingRun& run) {
+                                       const granular::SceneRun& run) {
   using json = nlohmann::ordered_json;
   const granular::ImpactOutcome& impact = run.impact;
   json contacts = json::array();
@@ -204,7 +174,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
 }
 
 std::string packing_report(const PackingScene& scene, const PackingModel& model,
-                           const PackingRun& run) {
+                           const granular::SceneRun& run) {
   const granular::ImpactOutcome& impact = run.impact;
   const double before = granular::kinetic_energy(model, model.velocity);
   const double after = granular::kinetic_energy(model, impact.velocity_after);

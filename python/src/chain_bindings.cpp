@@ -63,12 +63,12 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
                       double max_memory) {
   const chains::ChainScene scene = load_scene(scene_argument);
   const granular::RunLimits limits = memory_limits(max_memory);
-  chains::ChainRun run;
+  granular::SceneRun run;
   nlohmann::ordered_json summary;
   {
     py::gil_scoped_release computing;
     const chains::ChainModel model = chains::build_chain_model(scene, limits);
-    chains::ChainRunOptions options;
+    granular::SceneRunOptions options;
     options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
     options.limits = limits;
     run = chains::run_chain_scene(scene, model, options);

@@ -72,12 +72,12 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
     scene.directory = py::module_::import("os").attr("fspath")(data_dir).cast<std::string>();
   const granular::RunLimits limits = memory_limits(max_memory);
   packings::PackingModel model;
-  packings::PackingRun run;
+  granular::SceneRun run;
   nlohmann::ordered_json summary;
   {
     py::gil_scoped_release computing;
     model = packings::build_packing_model(scene, limits);
-    packings::PackingRunOptions options;
+    granular::SceneRunOptions options;
     options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
     options.limits = limits;
     run = packings::run_packing_scene(scene, model, options);

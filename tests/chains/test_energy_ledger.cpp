@@ -53,7 +53,7 @@ granular::EnergyLedger ledger_of(json scene, Method method, const std::string& w
   }
   const chains::ChainScene parsed = chains::parse_chain_scene(scene.dump(), what);
   const chains::ChainModel model = chains::build_chain_model(parsed);
-  const chains::ChainRun run = chains::run_chain_scene(parsed, model);
+  const granular::SceneRun run = chains::run_chain_scene(parsed, model);
   const granular::EnergyLedger ledger = granular::energy_ledger(model, run.impact);
   const double scale = ledger.kinetic_before + ledger.potential_before + ledger.work_of_forces;
   std::printf("%-40s %-14s T %.6g -> %.6g J, dissipated %.4g, left %.3g, imbalance %.2g\n",

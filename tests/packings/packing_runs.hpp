@@ -26,7 +26,7 @@ inline std::string lattice_scene(const std::string& type, int rows, int columns,
 struct PackingCase {
   packings::PackingScene scene;
   packings::PackingModel model;
-  packings::PackingRun run;
+  granular::SceneRun run;
 };
 
 // `directory`: where its bead lists are (the source tree by default)

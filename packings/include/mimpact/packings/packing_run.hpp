@@ -6,47 +6,33 @@
 
 #include "mimpact/granular/impact_outcome.hpp"
 #include "mimpact/granular/run_limits.hpp"
+#include "mimpact/granular/scene_run.hpp"
 #include "mimpact/granular/time_series.hpp"
 #include "mimpact/packings/packing_model.hpp"
 #include "mimpact/packings/packing_scene.hpp"
 
-// One run of a planar packing scene by the method it chooses: what `mimpact packing` and the
-// Python module's run_packing() share.
+// One run of a packing scene by the method it chooses (granular::run_scene on the packing's
+// model and system): what `mimpact packing` and the Python module's run_packing() share.
 namespace mimpact::packings {
-
-struct PackingRunOptions {
-  granular::ImpactOverrides impact;  // over the scene's "impact" (granular::resolve_impact)
-  bool record = true;                // sample the scene's "record"
-  granular::RunLimits limits;        // the memory the recording may take
-};
-
-struct PackingRun {
-  granular::ImpactOutcome impact;
-  plugins::LzbImpactOptions options;  // the impact's options, as resolved
-  std::optional<double> delta_p;      // N s, of the impulse steps; none for the other methods
-  bool recorded = false;              // series (and frames, if asked for) hold the scene's record
-  granular::TimeSeries series;
-  granular::Frames frames;
-};
 
 // The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
 // event-driven scheme, or the compliant contacts integrated in time, as the scene says. Throws
 // InvalidInput for a missing or out-of-range delta_p, a delta_p given to another method, and
 // recorded contacts or beads out of range.
-PackingRun run_packing_scene(const PackingScene& scene, const PackingModel& model,
-                             const PackingRunOptions& options = {});
+granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingModel& model,
+                                     const granular::SceneRunOptions& options = {});
 
 // summary.json of `mimpact packing`: status, method, post-impact velocities [vx, vy] per body
 // (the packing's beads, then the strikers) and the impulse each body received, per contact its
 // bodies, peak force, time and impulse, steps and the contacts integrated per step (the work),
 // kinetic energy, vector momentum and the energy ledger.
 nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
-                                       const PackingRun& run);
+                                       const granular::SceneRun& run);
 
 // A few lines for people: sizes, method, steps and contacts per step, energy and momentum, the
 // fastest bodies after the impact.
 std::string packing_report(const PackingScene& scene, const PackingModel& model,
-                           const PackingRun& run);
+                           const granular::SceneRun& run);
 
 // The geometry for viewers and plots: "body,x,y,radius,mass" per body, and
 // "contact,first,second,wall,nx,ny,x,y" per contact (second -1 for a wall, whose index is

@@ -1,0 +1,61 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/impact_outcome.hpp"
+#include "mimpact/granular/run_limits.hpp"
+#include "mimpact/granular/scene_spec.hpp"
+#include "mimpact/granular/time_series.hpp"
+#include "mimpact/kernel/non_smooth_dynamical_system.hpp"
+#include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/plugins/lzb_impact_options.hpp"
+
+// One run of a granular scene by the method it chooses, whatever its geometry: what
+// `mimpact chain`, `mimpact packing` and the Python module's run_chain() and run_packing() share.
+// The chains and packings build the model and its kernel system; the run is this one.
+namespace mimpact::granular {
+
+// What the caller chooses beside the scene.
+struct SceneRunOptions {
+  ImpactOverrides impact;  // over the scene's "impact" (resolve_impact)
+  bool record = true;      // sample the scene's "record"
+  RunLimits limits;        // the memory the recording may take
+  // Sees the LZB samples too, at least every progress_every impulse steps (a progress report).
+  numerics::ImpactObserver* progress = nullptr;
+  std::int64_t progress_every = 2'000'000;
+};
+
+// What the scene asks of its run: its fields common to every geometry.
+struct SceneRunSpec {
+  const plugins::LzbImpactOptions& impact;
+  Method method = Method::lzb;
+  const CompliantSpec& compliant;
+  RecordSpec record;          // the contacts and bodies sampled
+  int frame_every = 0;        // every this many samples, a frame of the whole scene (0: none)
+  const std::string& source;  // the scene file, for messages
+};
+
+struct SceneRun {
+  ImpactOutcome impact;
+  Method method = Method::lzb;
+  plugins::LzbImpactOptions options;  // the impact's options, as resolved
+  std::optional<double> delta_p;      // N s, of the impulse steps; none for the other methods
+  bool recorded = false;              // series (and frames, if asked for) hold the scene's record
+  TimeSeries series;
+  Frames frames;
+};
+
+// The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
+// event-driven scheme, or the compliant contacts integrated in time, as the scene says, on
+// `system` (body b is the model's body b). Throws InvalidInput for a missing or out-of-range
+// delta_p, a delta_p given to another method or alongside relative_delta_p, and a recording
+// beyond options.limits.
+SceneRun run_scene(const ContactModel& model,
+                   std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                   const SceneRunSpec& spec, const SceneRunOptions& options = {});
+
+}  // namespace mimpact::granular

@@ -1,0 +1,79 @@
+#include "mimpact/granular/scene_run.hpp"
+
+#include <utility>
+#include <vector>
+
+#include "mimpact/granular/impact_recorder.hpp"
+
+namespace mimpact::granular {
+
+namespace {
+
+// Hands every sample to several observers.
+class Observers : public numerics::ImpactObserver {
+ public:
+  void add(numerics::ImpactObserver* observer) {
+    if (observer) observers_.push_back(observer);
+  }
+  void observe(const numerics::ImpactSample& sample) override {
+    for (numerics::ImpactObserver* observer : observers_) observer->observe(sample);
+  }
+  bool empty() const { return observers_.empty(); }
+
+ private:
+  std::vector<numerics::ImpactObserver*> observers_;
+};
+
+SceneRun run_lzb(const ContactModel& model,
+                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system, const SceneRunSpec& spec,
+                 const SceneRunOptions& options, plugins::LzbImpactOptions impact, bool record) {
+  SceneRun run;
+  if (impact.chosen_integrator() != plugins::LzbIntegrator::adaptive) {
+    const double delta_p = impulse_step(model, impact, impact_labels(options.impact));
+    if (impact.delta_p) run.delta_p = delta_p;
+  }
+  ImpactRecorder recorder(model, spec.record, spec.frame_every, options.limits);
+  Observers observers;
+  if (record) {
+    recorder.configure(impact);
+    observers.add(&recorder);
+  } else if (options.progress) {
+    impact.impulse_steps.sample_every = options.progress_every;
+    impact.impulse_steps.sampled_contacts = {0};
+  }
+  observers.add(options.progress);
+  run.impact =
+      simulate_impacts(model, std::move(system), impact, observers.empty() ? nullptr : &observers);
+  if (record) {
+    run.series = recorder.series(run.impact);
+    run.frames = recorder.frames(run.impact);
+  }
+  run.recorded = record;
+  run.options = impact;
+  return run;
+}
+
+}  // namespace
+
+SceneRun run_scene(const ContactModel& model,
+                   std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                   const SceneRunSpec& spec, const SceneRunOptions& options) {
+  const bool record = options.record && (!spec.record.contacts.empty() ||
+                                         !spec.record.bodies.empty() || spec.frame_every > 0);
+  const plugins::LzbImpactOptions impact =
+      resolve_impact(spec.impact, spec.method, options.impact, spec.source);
+  if (spec.method == Method::lzb)
+    return run_lzb(model, std::move(system), spec, options, impact, record);
+  CompliantRun compliant = simulate_compliant(model, std::move(system), spec.compliant,
+                                              record ? spec.record : RecordSpec{},
+                                              record ? spec.frame_every : 0, options.limits);
+  SceneRun run;
+  run.method = Method::compliant;
+  run.impact = std::move(compliant.impact);
+  run.series = std::move(compliant.series);
+  run.frames = std::move(compliant.frames);
+  run.recorded = record;
+  return run;
+}
+
+}  // namespace mimpact::granular
