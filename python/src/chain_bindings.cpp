@@ -14,6 +14,7 @@
 #include "mimpact/granular/hertz.hpp"
 #include "mimpact/kernel/parameters.hpp"
 #include "scene_arguments.hpp"
+#include "scene_result.hpp"
 
 namespace py = pybind11;
 
@@ -22,19 +23,9 @@ namespace mimpact::python {
 namespace {
 
 // What run_chain() returns: the arrays of summary.json, and the recorded time series.
-struct ChainResult {
+struct ChainResult : SceneResult {
   Eigen::VectorXd post_impact_velocities;  // m/s, per body, strikers included
-  Eigen::VectorXd impulses;                // N s, per contact
-  Eigen::VectorXd max_forces;              // N, per contact
-  Eigen::VectorXd times_of_max_force;      // s from the first impact, per contact
-  std::string status;                      // "terminated", "step_limit" or "end_time"
-  double wall_time = 0.0;                  // s of computation
-  double duration = 0.0;                   // s, physical duration of the impacts
-  std::int64_t steps = 0;
-  std::optional<double> delta_p;   // N s, the impulse steps'; None for the other methods
-  py::dict energy;                 // the ledger (J): granular::EnergyLedger's fields
-  py::object series = py::none();  // dict of arrays when the scene records, else None
-  py::dict summary;                // everything summary.json holds
+  py::dict energy;                         // the ledger (J): granular::EnergyLedger's fields
 };
 
 chains::ChainScene load_scene(const py::object& scene) {
@@ -74,21 +65,9 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
     run = chains::run_chain_scene(scene, model, options);
     summary = chains::run_summary(model, run);
   }
-  const granular::ImpactOutcome& impact = run.impact;
-  if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite()))
-    throw Error("the run produced a non-finite velocity or force");
   ChainResult result;
-  result.post_impact_velocities = impact.velocity_after;
-  result.impulses = impact.lzb.impulse;
-  result.max_forces = impact.lzb.max_force;
-  result.times_of_max_force = impact.lzb.time_of_max_force;
-  result.status = summary["status"].get<std::string>();
-  result.wall_time = impact.wall_time;
-  result.duration = impact.lzb.duration;
-  result.steps = impact.lzb.steps;
-  result.delta_p = run.delta_p;
-  if (run.recorded) result.series = series_dict(run.series);
-  result.summary = from_json(summary);
+  result.fill(run, summary);
+  result.post_impact_velocities = run.impact.velocity_after;
   result.energy = py::dict(result.summary["energy"]);
   result.energy["dissipated"] =
       py::module_::import("numpy").attr("asarray")(result.energy["dissipated"]);
@@ -168,30 +147,19 @@ void bind_chains(py::module_& module) {
       py::arg("radius"), py::arg("bead"), py::arg("wall"),
       "N/m^1.5: the same for a sphere against a flat rigid wall (R* = R)");
 
-  py::class_<ChainResult>(module, "ChainResult",
-                          "The outcome of run_chain(): arrays per body and per contact, the "
-                          "status, the recorded time series and the whole summary.json")
+  py::class_<ChainResult> chain_result(
+      module, "ChainResult",
+      "The outcome of run_chain(): arrays per body and per contact, the status, the recorded "
+      "time series and the whole summary.json");
+  bind_scene_result(chain_result);
+  chain_result
       .def_readonly("post_impact_velocities", &ChainResult::post_impact_velocities,
                     "m/s, per body (strikers included), after the last impact")
-      .def_readonly("impulses", &ChainResult::impulses, "N s, per contact")
-      .def_readonly("max_forces", &ChainResult::max_forces, "N, the largest force per contact")
-      .def_readonly("times_of_max_force", &ChainResult::times_of_max_force,
-                    "s from the first impact, when each contact's force peaked")
-      .def_readonly("status", &ChainResult::status,
-                    "'terminated', 'step_limit' (LZB max_steps) or 'end_time' (compliant)")
-      .def_readonly("wall_time", &ChainResult::wall_time, "s of computation")
-      .def_readonly("duration", &ChainResult::duration, "s, physical duration of the impacts")
-      .def_readonly("steps", &ChainResult::steps, "impulse steps or integration steps")
-      .def_readonly("delta_p", &ChainResult::delta_p, "N s, the impulse steps'; None otherwise")
       .def_readonly("energy", &ChainResult::energy,
                     "the energy ledger (J): kinetic_before, potential_before, work_of_forces, "
                     "kinetic_after, dissipated (per contact), dissipated_total, potential_left; "
                     "before + potential_before + work_of_forces = after + dissipated_total + "
                     "potential_left to round-off")
-      .def_readonly("series", &ChainResult::series,
-                    "None, or when the scene records: dict of 'time' (s), 'contacts', 'forces' "
-                    "(N, samples x contacts), 'bodies', 'velocities' (m/s, samples x bodies)")
-      .def_readonly("summary", &ChainResult::summary, "everything summary.json holds")
       .def("__repr__",
            [](const ChainResult& result) {
              return "<ChainResult " + result.status + ": " +

@@ -12,6 +12,7 @@
 #include "mimpact/common/error.hpp"
 #include "mimpact/packings/packing_run.hpp"
 #include "scene_arguments.hpp"
+#include "scene_result.hpp"
 
 namespace py = pybind11;
 
@@ -20,23 +21,15 @@ namespace mimpact::python {
 namespace {
 
 // What run_packing() returns: the vectors of summary.json as arrays, the series and frames.
-struct PackingResult {
-  Eigen::MatrixX2d post_impact_velocities;  // m/s, [vx, vy] per body (beads, then strikers)
-  Eigen::MatrixX2d body_impulses;           // N s, [Px, Py] per body
-  Eigen::MatrixX2d positions;               // m, the centres, per body
-  Eigen::VectorXd radii;                    // m, per body
-  Eigen::VectorXd impulses;                 // N s, per contact
-  Eigen::VectorXd max_forces;               // N, per contact
-  Eigen::VectorXd times_of_max_force;       // s from the first impact, per contact
-  Eigen::MatrixX2i contact_bodies;          // the two bodies of each contact (-1: a wall)
-  std::string status;
-  double wall_time = 0.0, duration = 0.0;
-  std::int64_t steps = 0;
+// Per body a row of `dimension` components.
+struct PackingResult : SceneResult {
+  Eigen::MatrixXd post_impact_velocities;  // m/s, per body (beads, then strikers)
+  Eigen::MatrixXd body_impulses;           // N s, per body
+  Eigen::MatrixXd positions;               // m, the centres, per body
+  Eigen::VectorXd radii;                   // m, per body
+  Eigen::MatrixX2i contact_bodies;         // the two bodies of each contact (-1: a wall)
   double contacts_per_step = 0.0;
-  std::optional<double> delta_p;
-  py::object series = py::none();  // dict of arrays when the scene records, else None
   py::object frames = py::none();  // dict: time, forces (frames x contacts), velocities
-  py::dict summary;                // everything summary.json holds
 };
 
 packings::PackingScene load_scene(const py::object& scene) {
@@ -49,19 +42,20 @@ packings::PackingScene load_scene(const py::object& scene) {
       [](const std::string& path) { return packings::load_packing_scene(path); });
 }
 
-Eigen::MatrixX2d per_body(const Eigen::VectorXd& coordinates) {
-  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
-      coordinates.data(), coordinates.size() / 2, 2);
+// a row of `dimension` components per body
+Eigen::MatrixXd per_body(const Eigen::VectorXd& coordinates, int dimension) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      coordinates.data(), coordinates.size() / dimension, dimension);
 }
 
-py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies) {
+py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies, int dimension) {
   py::dict dict;
   dict["time"] = Eigen::VectorXd(
       Eigen::Map<const Eigen::VectorXd>(frames.time.data(), Eigen::Index(frames.time.size())));
   dict["forces"] = table(frames.force, frames.force.empty() ? 0 : frames.force.front().size());
   dict["velocities"] = py::module_::import("numpy")
-                           .attr("asarray")(table(frames.velocity, std::size_t(2 * bodies)))
-                           .attr("reshape")(Eigen::Index(frames.time.size()), bodies, 2);
+                           .attr("asarray")(table(frames.velocity, std::size_t(dimension * bodies)))
+                           .attr("reshape")(Eigen::Index(frames.time.size()), bodies, dimension);
   return dict;
 }
 
@@ -84,65 +78,46 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
     summary = packings::packing_summary(scene, model, run);
   }
   const granular::ImpactOutcome& impact = run.impact;
-  if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite()))
-    throw Error("the run produced a non-finite velocity or force");
   PackingResult result;
-  result.post_impact_velocities = per_body(impact.velocity_after);
+  result.fill(run, summary);
+  result.post_impact_velocities = per_body(impact.velocity_after, model.dimension);
   result.body_impulses =
-      per_body((impact.velocity_after - model.velocity).cwiseProduct(model.mass));
+      per_body((impact.velocity_after - model.velocity).cwiseProduct(model.mass), model.dimension);
   result.positions = model.position;
   result.radii = model.radius;
-  result.impulses = impact.lzb.impulse;
-  result.max_forces = impact.lzb.max_force;
-  result.times_of_max_force = impact.lzb.time_of_max_force;
   result.contact_bodies.resize(model.contact_count(), 2);
   for (Eigen::Index c = 0; c < model.contact_count(); ++c) {
     const packings::PackingContact& contact = model.contacts[std::size_t(c)];
     result.contact_bodies.row(c) << int(contact.first), int(contact.second);
   }
-  result.status = summary["status"].get<std::string>();
-  result.wall_time = impact.wall_time;
-  result.duration = impact.lzb.duration;
-  result.steps = impact.lzb.steps;
   result.contacts_per_step = summary["contacts_per_step"].get<double>();
-  result.delta_p = run.delta_p;
-  if (run.recorded) result.series = series_dict(run.series);
-  if (!run.frames.empty()) result.frames = frames_dict(run.frames, model.body_count());
-  result.summary = from_json(summary);
+  if (!run.frames.empty())
+    result.frames = frames_dict(run.frames, model.body_count(), model.dimension);
   return result;
 }
 
 }  // namespace
 
 void bind_packings(py::module_& module) {
-  py::class_<PackingResult>(module, "PackingResult",
-                            "The outcome of run_packing(): [vx, vy] per body, arrays per "
-                            "contact, the recorded series and frames, the whole summary.json")
+  py::class_<PackingResult> packing_result(
+      module, "PackingResult",
+      "The outcome of run_packing(): a row per body, arrays per contact, the recorded series "
+      "and frames, the whole summary.json");
+  bind_scene_result(packing_result);
+  packing_result
       .def_readonly("post_impact_velocities", &PackingResult::post_impact_velocities,
-                    "m/s, bodies x 2: the packing's beads (a lattice row by row), then strikers")
-      .def_readonly("body_impulses", &PackingResult::body_impulses, "N s, bodies x 2")
-      .def_readonly("positions", &PackingResult::positions, "m, the centres, bodies x 2")
+                    "m/s, bodies x dimension: the packing's beads (a lattice row by row), then "
+                    "strikers")
+      .def_readonly("body_impulses", &PackingResult::body_impulses, "N s, bodies x dimension")
+      .def_readonly("positions", &PackingResult::positions, "m, the centres, bodies x dimension")
       .def_readonly("radii", &PackingResult::radii, "m, per body")
-      .def_readonly("impulses", &PackingResult::impulses, "N s, per contact (normal)")
-      .def_readonly("max_forces", &PackingResult::max_forces, "N, per contact")
-      .def_readonly("times_of_max_force", &PackingResult::times_of_max_force,
-                    "s from the first impact, per contact")
       .def_readonly("contact_bodies", &PackingResult::contact_bodies,
                     "contacts x 2: the bodies of each contact; -1 in the second for a wall")
-      .def_readonly("status", &PackingResult::status)
-      .def_readonly("wall_time", &PackingResult::wall_time, "s of computation")
-      .def_readonly("duration", &PackingResult::duration, "s, physical duration")
-      .def_readonly("steps", &PackingResult::steps)
       .def_readonly("contacts_per_step", &PackingResult::contacts_per_step,
                     "contacts integrated per step on average (LZB): the work")
-      .def_readonly("delta_p", &PackingResult::delta_p, "N s, the impulse steps'; None otherwise")
-      .def_readonly("series", &PackingResult::series,
-                    "None, or dict of 'time', 'contacts', 'forces', 'bodies', 'velocities' "
-                    "(samples x bodies x 2)")
       .def_readonly("frames", &PackingResult::frames,
                     "None, or dict of 'time', 'forces' (frames x contacts), 'velocities' "
-                    "(frames x bodies x 2)")
-      .def_readonly("summary", &PackingResult::summary, "everything summary.json holds")
+                    "(frames x bodies x dimension)")
       .def("__repr__", [](const PackingResult& result) {
         return "<PackingResult " + result.status + ": " +
                std::to_string(result.post_impact_velocities.rows()) + " bodies, " +
