@@ -62,7 +62,7 @@ void c1_through_kernel(benchmark::State& state, const plugins::LzbImpactOptions&
     impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
   }
-  state.counters["steps"] = double(impact.lzb.steps);
+  state.counters["steps"] = double(impact.result.steps);
   state.counters["velocity_error"] = c1_velocity_error(impact.velocity_after);
 }
 
@@ -100,8 +100,9 @@ void BM_ChainLengthAdaptive(benchmark::State& state) {
     impact = chains::simulate_chain_impact(model, options);
     benchmark::DoNotOptimize(impact.velocity_after.data());
   }
-  state.counters["steps"] = double(impact.lzb.steps);
-  state.counters["contacts_per_step"] = double(impact.lzb.contact_steps) / double(impact.lzb.steps);
+  state.counters["steps"] = double(impact.result.steps);
+  state.counters["contacts_per_step"] =
+      double(impact.result.contact_steps) / double(impact.result.steps);
   state.counters["last_velocity"] = impact.velocity_after(impact.velocity_after.size() - 1);
 }
 BENCHMARK(BM_ChainLengthAdaptive)
@@ -120,7 +121,7 @@ void BM_ChainLengthCompliant(benchmark::State& state) {
     run = chains::simulate_chain_compliant(model, spec, {});
     benchmark::DoNotOptimize(run.impact.velocity_after.data());
   }
-  state.counters["steps"] = double(run.impact.lzb.steps);
+  state.counters["steps"] = double(run.impact.result.steps);
   state.counters["most_bodies_in_motion"] = double(run.most_bodies_in_motion);
   state.counters["last_velocity"] = run.impact.velocity_after(run.impact.velocity_after.size() - 1);
 }

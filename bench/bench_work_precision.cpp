@@ -44,7 +44,7 @@ struct Case {
 };
 
 Outcome outcome_of(const granular::ImpactOutcome& impact) {
-  return {impact.velocity_after, impact.lzb.max_force, impact.lzb.steps};
+  return {impact.velocity_after, impact.result.max_force, impact.result.steps};
 }
 
 Outcome run_lzb(const Case& c, const chains::ChainModel& model, double share) {

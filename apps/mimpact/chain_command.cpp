@@ -166,10 +166,10 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (!quiet)
     std::cerr << scene_file << ": "
               << chains::chain_report(model, impact, method_line(scene, run.delta_p));
-  if (impact.lzb.status != numerics::LzbStatus::terminated)
-    throw Error(scene_file + ": " + impact.lzb.message + "; no output written");
-  if (!(impact.velocity_after.allFinite() && impact.lzb.max_force.allFinite() &&
-        std::isfinite(impact.lzb.duration)))
+  if (impact.result.status != numerics::LzbStatus::terminated)
+    throw Error(scene_file + ": " + impact.result.message + "; no output written");
+  if (!(impact.velocity_after.allFinite() && impact.result.max_force.allFinite() &&
+        std::isfinite(impact.result.duration)))
     throw Error(scene_file +
                 ": the run produced a non-finite velocity, force or duration; no output written");
   write_results(summary, writes_series ? &series : nullptr, out);

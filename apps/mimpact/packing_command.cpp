@@ -72,10 +72,10 @@ int packing_command(const std::vector<std::string>& arguments) {
   const granular::SceneRun run = packings::run_packing_scene(scene, model, run_options);
   const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
   if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
-  if (run.impact.lzb.status != numerics::LzbStatus::terminated)
-    throw Error(scene_file + ": " + run.impact.lzb.message + "; no output written");
-  if (!(run.impact.velocity_after.allFinite() && run.impact.lzb.max_force.allFinite() &&
-        std::isfinite(run.impact.lzb.duration)))
+  if (run.impact.result.status != numerics::LzbStatus::terminated)
+    throw Error(scene_file + ": " + run.impact.result.message + "; no output written");
+  if (!(run.impact.velocity_after.allFinite() && run.impact.result.max_force.allFinite() &&
+        std::isfinite(run.impact.result.duration)))
     throw Error(scene_file +
                 ": the run produced a non-finite velocity, force or duration; no output written");
   if (out.empty()) {

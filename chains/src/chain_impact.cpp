@@ -85,22 +85,22 @@ nlohmann::ordered_json chain_summary(const ChainModel& model, const granular::Im
   json contacts = json::array();
   for (Eigen::Index i = 0; i < model.contact_count(); ++i)
     contacts.push_back({{"index", i},
-                        {"max_force", impact.lzb.max_force(i)},
-                        {"time_of_max", impact.lzb.time_of_max_force(i)},
-                        {"impulse", impact.lzb.impulse(i)}});
+                        {"max_force", impact.result.max_force(i)},
+                        {"time_of_max", impact.result.time_of_max_force(i)},
+                        {"impulse", impact.result.impulse(i)}});
   const Eigen::VectorXd& after = impact.velocity_after;
   json summary{
-      {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.lzb.status)},
+      {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.result.status)},
       {"delta_p", delta_p ? json(*delta_p) : json(nullptr)},
       {"post_impact_velocities", std::vector<double>(after.data(), after.data() + after.size())},
-      {"impulse_steps", impact.lzb.steps},
+      {"impulse_steps", impact.result.steps},
       {"impacts", impact.impact_times.size()},
       {"impact_time", impact.impact_time},
-      {"impact_duration", impact.lzb.duration},
+      {"impact_duration", impact.result.duration},
       {"kinetic_energy",
        {{"before", granular::kinetic_energy(model, model.velocity)},
         {"after", granular::kinetic_energy(model, after)},
-        {"residual_potential", impact.lzb.residual_energy}}},
+        {"residual_potential", impact.result.residual_energy}}},
       {"momentum",
        {{"before", momentum(model, model.velocity)}, {"after", momentum(model, after)}}},
       {"energy", granular::ledger_json(granular::energy_ledger(model, impact))},
@@ -158,9 +158,9 @@ std::string chain_report(const ChainModel& model, const granular::ImpactOutcome&
   report += line + method + "\n";
   std::snprintf(
       line, sizeof line, "%lld steps in %.3g s of computation; the impact lasts %.6g s (%s)\n",
-      (long long)impact.lzb.steps, impact.wall_time, impact.lzb.duration,
+      (long long)impact.result.steps, impact.wall_time, impact.result.duration,
       impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
-                             : std::string(numerics::to_string(impact.lzb.status)).c_str());
+                             : std::string(numerics::to_string(impact.result.status)).c_str());
   report += line;
   std::snprintf(line, sizeof line,
                 "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum %.9g -> %.9g N s\n",

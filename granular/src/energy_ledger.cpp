@@ -17,15 +17,15 @@ EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impac
   ledger.kinetic_before = kinetic_energy(model, model.velocity);
   ledger.kinetic_after = kinetic_energy(model, impact.velocity_after);
   const Eigen::Index m = model.contact_count();
-  const Eigen::VectorXd& stored_after = impact.lzb.stored_energy;
+  const Eigen::VectorXd& stored_after = impact.result.stored_energy;
   const Eigen::VectorXd stored_before = impact.stored_energy_at_start.size() == m
                                             ? impact.stored_energy_at_start
                                             : Eigen::VectorXd::Zero(m);
-  if (impact.lzb.work.size() != m || stored_after.size() != m)
+  if (impact.result.work.size() != m || stored_after.size() != m)
     throw Error("the impact's method kept no energy ledger (nonlinear relations)");
   ledger.potential_before = stored_before.sum();
   ledger.work_of_forces = impact.work_of_forces;
-  ledger.dissipated = impact.lzb.work + stored_before - stored_after;
+  ledger.dissipated = impact.result.work + stored_before - stored_after;
   ledger.dissipated_total = ledger.dissipated.sum();
   ledger.potential_left = stored_after.sum();
   return ledger;

@@ -40,7 +40,7 @@ class Impacts : public kernel::SimulationObserver {
     if (result_.impact_times.empty())
       throw Error("the strikers never reached their targets within the simulated time");
     total_.velocity = model_.W.transpose() * result_.velocity_after;
-    result_.lzb = total_;
+    result_.result = total_;
     return result_;
   }
 
@@ -194,10 +194,11 @@ ImpactOutcome simulate_impact_numerics(const ContactModel& model,
   numerics::LzbImpulseIntegrator integrator(options);
   ImpactOutcome impact;
   const auto start = std::chrono::steady_clock::now();
-  impact.lzb = integrator.integrate(model.H, model.u_minus, model.laws, observer);
+  impact.result = integrator.integrate(model.H, model.u_minus, model.laws, observer);
   impact.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  impact.velocity_after = model.velocity + (model.W * impact.lzb.impulse).cwiseQuotient(model.mass);
+  impact.velocity_after =
+      model.velocity + (model.W * impact.result.impulse).cwiseQuotient(model.mass);
   impact.impact_times = {0.0};
   impact.velocities_before = {model.velocity};
   return impact;
@@ -259,24 +260,24 @@ CompliantRun simulate_compliant(const ContactModel& model,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
   // touching strikers start in contact: no closing event, the impact begins at 0
   impact.impact_time = std::max(0.0, watch.first_contact());
-  impact.lzb.impulse = history.impulse;
-  impact.lzb.max_force = history.max_force;
-  impact.lzb.time_of_max_force = history.time_of_max_force.array() - impact.impact_time;
-  impact.lzb.steps = summary.smooth_steps;
-  impact.lzb.work = history.work;
-  impact.lzb.stored_energy = history.stored_energy;
+  impact.result.impulse = history.impulse;
+  impact.result.max_force = history.max_force;
+  impact.result.time_of_max_force = history.time_of_max_force.array() - impact.impact_time;
+  impact.result.steps = summary.smooth_steps;
+  impact.result.work = history.work;
+  impact.result.stored_energy = history.stored_energy;
   impact.stored_energy_at_start = history.stored_energy_at_start;
   impact.work_of_forces = history.work_of_forces;
   impact.cut_by_end_time = !precompressed && !history.all_open;
   // a free scene's impact lasts until its last contact opens; a precompressed one's, the run
-  impact.lzb.duration =
+  impact.result.duration =
       (precompressed || watch.last_opening() < 0.0 ? summary.end_time : watch.last_opening()) -
       impact.impact_time;
   impact.velocity_after.resize(model.mass.size());
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
     impact.velocity_after.segment(b * model.dimension, model.dimension) =
         system->system(b).velocity();
-  impact.lzb.velocity = model.W.transpose() * impact.velocity_after;
+  impact.result.velocity = model.W.transpose() * impact.velocity_after;
   impact.impact_times = {impact.impact_time};
   impact.velocities_before = {model.velocity};
   run.series = watch.take_series();

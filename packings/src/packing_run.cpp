@@ -82,12 +82,13 @@ std::string method_name(const PackingScene& scene, const granular::SceneRun& run
 }
 
 double contacts_per_step(const granular::ImpactOutcome& impact) {
-  return impact.lzb.steps > 0 ? double(impact.lzb.contact_steps) / double(impact.lzb.steps) : 0.0;
+  return impact.result.steps > 0 ? double(impact.result.contact_steps) / double(impact.result.steps)
+                                 : 0.0;
 }
 
 // the contacts the impact reached: those that carried a force
 Eigen::Index contacts_reached(const granular::ImpactOutcome& impact) {
-  return Eigen::Index((impact.lzb.max_force.array() > 0.0).count());
+  return Eigen::Index((impact.result.max_force.array() > 0.0).count());
 }
 
 granular::TimeSeries frame_table(const granular::Frames& frames, bool forces) {
@@ -112,7 +113,7 @@ granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingMod
                              {.impact = scene.impact,
                               .method = scene.method,
                               .compliant = scene.compliant,
-                              .record = scene.chain_record(),
+                              .record = scene.run_record(),
                               .frame_every = scene.record.frames,
                               .source = scene.source},
                              options);
@@ -131,15 +132,15 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
     else
       entry["wall"] = contact.wall;
     entry["normal"] = components(contact.normal);
-    entry["max_force"] = impact.lzb.max_force(c);
-    entry["time_of_max"] = impact.lzb.time_of_max_force(c);
-    entry["impulse"] = impact.lzb.impulse(c);
+    entry["max_force"] = impact.result.max_force(c);
+    entry["time_of_max"] = impact.result.time_of_max_force(c);
+    entry["impulse"] = impact.result.impulse(c);
     contacts.push_back(entry);
   }
   const Eigen::VectorXd& after = impact.velocity_after;
   const Eigen::VectorXd body_impulses = (after - model.velocity).cwiseProduct(model.mass);
   json summary{
-      {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.lzb.status)},
+      {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.result.status)},
       {"method", scene.method == granular::Method::lzb ? "lzb" : "compliant"},
       {"integrator", scene.method == granular::Method::compliant
                          ? json(nullptr)
@@ -154,16 +155,16 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"bodies", model.body_count()},
       {"post_impact_velocities", per_body(model, after)},
       {"body_impulses", per_body(model, body_impulses)},
-      {"steps", impact.lzb.steps},
+      {"steps", impact.result.steps},
       {"contacts_per_step", contacts_per_step(impact)},
       {"contacts_reached", contacts_reached(impact)},
       {"impacts", impact.impact_times.size()},
       {"impact_time", impact.impact_time},
-      {"impact_duration", impact.lzb.duration},
+      {"impact_duration", impact.result.duration},
       {"kinetic_energy",
        {{"before", granular::kinetic_energy(model, model.velocity)},
         {"after", granular::kinetic_energy(model, after)},
-        {"residual_potential", impact.lzb.residual_energy}}},
+        {"residual_potential", impact.result.residual_energy}}},
       {"momentum",
        {{"before", components(momentum(model, model.velocity))},
         {"after", components(momentum(model, after))}}},
@@ -195,10 +196,10 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
       "fastest body after the impact: %lld, %s m/s (all in summary.json)\n",
       (long long)model.bead_count, (long long)(model.body_count() - model.bead_count),
       (long long)model.contact_count(), method_name(scene, run).c_str(),
-      (long long)impact.lzb.steps, contacts_per_step(impact), (long long)contacts_reached(impact),
-      impact.wall_time, impact.lzb.duration,
+      (long long)impact.result.steps, contacts_per_step(impact),
+      (long long)contacts_reached(impact), impact.wall_time, impact.result.duration,
       impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
-                             : std::string(numerics::to_string(impact.lzb.status)).c_str(),
+                             : std::string(numerics::to_string(impact.result.status)).c_str(),
       before, after, 100.0 * (after / before - 1.0),
       bracketed(momentum(model, model.velocity), "%.9g").c_str(),
       bracketed(momentum(model, impact.velocity_after), "%.9g").c_str(), (long long)fastest,

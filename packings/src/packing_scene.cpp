@@ -115,7 +115,7 @@ PackingScene load_packing_scene(const std::filesystem::path& path) {
                              path.has_parent_path() ? path.parent_path() : ".");
 }
 
-granular::RecordSpec PackingScene::chain_record() const {
+granular::RecordSpec PackingScene::run_record() const {
   return {.contacts = record.contacts,
           .bodies = record.beads,
           .every = record.every,

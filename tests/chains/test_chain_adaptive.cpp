@@ -20,12 +20,12 @@ TEST(AdaptiveChains, ElasticChainsAreTheExactHertzChain) {
   for (const char* scene : {"c1.json", "c2.json"}) {
     const chains::ChainModel model = scene_model(scene);
     const granular::ImpactOutcome impact = run_adaptive(model, 1e-10);
-    ASSERT_EQ(impact.lzb.status, numerics::LzbStatus::terminated);
+    ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated);
     const Eigen::VectorXd exact =
         integrate_hertz_chain(model.mass, model.velocity, stiffnesses(model)).velocity;
     const double error = relative_difference(impact.velocity_after, exact);
     std::printf("%s, adaptive at 1e-10: ||v+ - v+_Hertz|| / ||v+_Hertz|| = %.2g in %lld steps\n",
-                scene, error, (long long)impact.lzb.steps);
+                scene, error, (long long)impact.result.steps);
     EXPECT_LE(error, 1e-8) << scene;
     EXPECT_LE(relative_momentum_change(model, impact), 1e-12) << scene;
   }
@@ -65,18 +65,18 @@ TEST(AdaptiveChains, SameModelAsTheImpulseStepsExtrapolated) {
     const granular::ImpactOutcome coarse = run_chain(model, 2.0 * c.finest_delta_p);
     const granular::ImpactOutcome fine = run_chain(model, c.finest_delta_p);
     const granular::ImpactOutcome adaptive = run_adaptive(model, 1e-10);
-    ASSERT_EQ(adaptive.lzb.status, numerics::LzbStatus::terminated) << name;
+    ASSERT_EQ(adaptive.result.status, numerics::LzbStatus::terminated) << name;
     const double velocity_gap = relative_difference(
         adaptive.velocity_after, richardson(fine.velocity_after, coarse.velocity_after));
     const double force_gap = relative_difference(
-        adaptive.lzb.max_force, richardson(fine.lzb.max_force, coarse.lzb.max_force));
+        adaptive.result.max_force, richardson(fine.result.max_force, coarse.result.max_force));
     std::printf(
         "%-28s impulse steps %lld + %lld, adaptive %lld steps: velocities %.2g, peak forces "
         "%.2g from Richardson (unextrapolated %.2g, %.2g)\n",
-        name.c_str(), (long long)coarse.lzb.steps, (long long)fine.lzb.steps,
-        (long long)adaptive.lzb.steps, velocity_gap, force_gap,
+        name.c_str(), (long long)coarse.result.steps, (long long)fine.result.steps,
+        (long long)adaptive.result.steps, velocity_gap, force_gap,
         relative_difference(adaptive.velocity_after, fine.velocity_after),
-        relative_difference(adaptive.lzb.max_force, fine.lzb.max_force));
+        relative_difference(adaptive.result.max_force, fine.result.max_force));
     EXPECT_LE(velocity_gap, 1e-5) << name;
     EXPECT_LE(force_gap, 1e-5) << name;
     EXPECT_LE(relative_momentum_change(model, adaptive), 1e-12) << name;

@@ -23,12 +23,12 @@ void expect_step_counts(const std::string& scene, const std::vector<TableRow>& t
   const chains::ChainModel model = scene_model(scene);
   for (const TableRow& row : table) {
     const granular::ImpactOutcome impact = run_chain(model, row.delta_p);
-    ASSERT_EQ(impact.lzb.status, numerics::LzbStatus::terminated);
+    ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated);
     const double taken = double(row.paper_steps - 1);
-    EXPECT_NEAR(double(impact.lzb.steps), taken, 0.01 * taken)
+    EXPECT_NEAR(double(impact.result.steps), taken, 0.01 * taken)
         << scene << " at delta_p = " << row.delta_p;
     std::printf("%s delta_p = %g: %lld steps (paper %lld - 1)\n", scene.c_str(), row.delta_p,
-                (long long)impact.lzb.steps, (long long)row.paper_steps);
+                (long long)impact.result.steps, (long long)row.paper_steps);
   }
 }
 
@@ -77,7 +77,7 @@ TEST(PaperTable4, C3EndsCleanlyAtEveryPublishedStep) {
   const double block_speed = model.velocity(0) / double(model.body_count());
   for (double delta_p : {1e-5, 1e-6, 1e-7}) {
     const granular::ImpactOutcome impact = run_chain(model, delta_p);
-    ASSERT_EQ(impact.lzb.status, numerics::LzbStatus::terminated) << delta_p;
+    ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated) << delta_p;
     ASSERT_TRUE(impact.velocity_after.allFinite());
     EXPECT_LE(relative_momentum_change(model, impact), 1e-12);
     EXPECT_LT(kinetic_energy_ratio(model, impact), 1.0);
@@ -86,7 +86,7 @@ TEST(PaperTable4, C3EndsCleanlyAtEveryPublishedStep) {
         EXPECT_NEAR(impact.velocity_after(i), block_speed, 0.01 * block_speed) << "ball " << i;
     }
     std::printf("C3 delta_p = %g: %lld steps (paper's table 4: %s), kinetic energy ratio %.6f\n",
-                delta_p, (long long)impact.lzb.steps,
+                delta_p, (long long)impact.result.steps,
                 delta_p == 1e-5   ? "14139"
                 : delta_p == 1e-6 ? "272754"
                                   : "1363111",

@@ -35,11 +35,11 @@ TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
   const granular::CompliantRun compliant_short = run_compliant(short_chain, 1e-6);
   const granular::CompliantRun compliant_long = run_compliant(long_chain, 1e-6);
   const double compliant_ratio =
-      double(compliant_long.impact.lzb.steps) / double(compliant_short.impact.lzb.steps);
+      double(compliant_long.impact.result.steps) / double(compliant_short.impact.result.steps);
   std::printf(
       "compliant at 1e-6: %lld and %lld steps (x%.2f), at most %lld and %lld bodies "
       "integrated at once\n",
-      (long long)compliant_short.impact.lzb.steps, (long long)compliant_long.impact.lzb.steps,
+      (long long)compliant_short.impact.result.steps, (long long)compliant_long.impact.result.steps,
       compliant_ratio, (long long)compliant_short.most_bodies_in_motion,
       (long long)compliant_long.most_bodies_in_motion);
   EXPECT_LE(compliant_ratio, 10.5);
@@ -49,11 +49,12 @@ TEST(WaveCost, TenTimesTheBeadsCostTenTimesTheStepsAndTheSameWorkPerStep) {
 
   const granular::ImpactOutcome adaptive_short = run_adaptive(short_chain, 1e-6);
   const granular::ImpactOutcome adaptive_long = run_adaptive(long_chain, 1e-6);
-  const double adaptive_ratio = double(adaptive_long.lzb.steps) / double(adaptive_short.lzb.steps);
+  const double adaptive_ratio =
+      double(adaptive_long.result.steps) / double(adaptive_short.result.steps);
   const double contacts_per_step =
-      double(adaptive_long.lzb.contact_steps) / double(adaptive_long.lzb.steps);
+      double(adaptive_long.result.contact_steps) / double(adaptive_long.result.steps);
   std::printf("adaptive at 1e-6: %lld and %lld steps (x%.2f), %.2f contacts per step\n",
-              (long long)adaptive_short.lzb.steps, (long long)adaptive_long.lzb.steps,
+              (long long)adaptive_short.result.steps, (long long)adaptive_long.result.steps,
               adaptive_ratio, contacts_per_step);
   EXPECT_LE(adaptive_ratio, 10.5);
   EXPECT_LE(contacts_per_step, 12.0);
@@ -77,7 +78,7 @@ TEST(WaveCost, TheWakesSlowCollisionsCostNoIntegration) {
   std::printf(
       "30 000 beads: compliant at 1e-8, %lld steps, at most %lld bodies in motion; last "
       "bead %.9f against %.9f (adaptive at 1e-9)\n",
-      (long long)compliant.impact.lzb.steps, (long long)compliant.most_bodies_in_motion,
+      (long long)compliant.impact.result.steps, (long long)compliant.most_bodies_in_motion,
       compliant.impact.velocity_after(last), adaptive.velocity_after(last));
   EXPECT_LE(compliant.most_bodies_in_motion, 12);
   EXPECT_NEAR(compliant.impact.velocity_after(last), adaptive.velocity_after(last), 2e-6);
@@ -116,9 +117,9 @@ TEST(WaveCost, FreeFlightCostsNoStep) {
   spec.end_time = 2e-3;
   const granular::CompliantRun struck = chains::simulate_chain_compliant(touching, spec, {});
   std::printf("striker 1 m away: %lld steps, touching: %lld steps; impact at t = %.12g s\n",
-              (long long)flown.impact.lzb.steps, (long long)struck.impact.lzb.steps,
+              (long long)flown.impact.result.steps, (long long)struck.impact.result.steps,
               flown.impact.impact_time);
-  EXPECT_EQ(flown.impact.lzb.steps, struck.impact.lzb.steps);
+  EXPECT_EQ(flown.impact.result.steps, struck.impact.result.steps);
   EXPECT_NEAR(flown.impact.impact_time, 1.0 / far.velocity(0), 1e-9);
   EXPECT_LE(relative_difference(flown.impact.velocity_after, struck.impact.velocity_after), 1e-9);
 }
@@ -127,8 +128,8 @@ TEST(WaveCost, ALooserToleranceNeverCostsMore) {
   const chains::ChainModel model = c1_beads(300);
   std::int64_t compliant_before = 0, adaptive_before = 0;
   for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}) {
-    const std::int64_t compliant = run_compliant(model, tolerance).impact.lzb.steps;
-    const std::int64_t adaptive = run_adaptive(model, tolerance).lzb.steps;
+    const std::int64_t compliant = run_compliant(model, tolerance).impact.result.steps;
+    const std::int64_t adaptive = run_adaptive(model, tolerance).result.steps;
     std::printf("tolerance %g: compliant %lld steps, adaptive %lld steps\n", tolerance,
                 (long long)compliant, (long long)adaptive);
     EXPECT_GE(compliant, compliant_before) << tolerance;

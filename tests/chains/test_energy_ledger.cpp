@@ -59,7 +59,7 @@ granular::EnergyLedger ledger_of(json scene, Method method, const std::string& w
   std::printf("%-40s %-14s T %.6g -> %.6g J, dissipated %.4g, left %.3g, imbalance %.2g\n",
               what.c_str(), method_name(method), ledger.kinetic_before, ledger.kinetic_after,
               ledger.dissipated_total, ledger.potential_left, ledger.imbalance() / scale);
-  const double steps = double(std::max<std::int64_t>(run.impact.lzb.steps, 100));
+  const double steps = double(std::max<std::int64_t>(run.impact.result.steps, 100));
   EXPECT_LE(std::abs(ledger.imbalance()), steps * DBL_EPSILON * scale)
       << what << ", " << method_name(method);
   EXPECT_EQ(ledger.dissipated.size(), model.contact_count());

@@ -62,13 +62,13 @@ void expect_chain(const PackingCase& packing, const std::vector<Eigen::Index>& b
     if (std::find(beads.begin(), beads.end(), b) == beads.end())
       others = std::max(others, model.of(v, b).norm());
   EXPECT_EQ(others, 0.0);
-  const Eigen::VectorXd& peak = packing.run.impact.lzb.max_force;
-  const double largest = chain.lzb.max_force.maxCoeff();
-  EXPECT_NEAR(peak(contact_between(model, beads[0], striker)), chain.lzb.max_force(0),
+  const Eigen::VectorXd& peak = packing.run.impact.result.max_force;
+  const double largest = chain.result.max_force.maxCoeff();
+  EXPECT_NEAR(peak(contact_between(model, beads[0], striker)), chain.result.max_force(0),
               1e-12 * largest);
   for (std::size_t k = 0; k + 1 < beads.size(); ++k)
     EXPECT_NEAR(peak(contact_between(model, beads[k], beads[k + 1])),
-                chain.lzb.max_force(Eigen::Index(k) + 1), 1e-12 * largest)
+                chain.result.max_force(Eigen::Index(k) + 1), 1e-12 * largest)
         << k;
 }
 

@@ -22,7 +22,10 @@ namespace mimpact::granular {
 // the other. Per-contact results are summed (impulses, steps) or taken at their peak over all
 // impacts, times counted from the first impact.
 struct ImpactOutcome {
-  numerics::LzbResult lzb;         // aggregated over the impacts
+  // the impacts' result, aggregated, whichever method computed it (the LZB integrators or the
+  // compliant contacts): per contact the impulse, peak force and its time, work and stored
+  // energy; the steps and duration
+  numerics::LzbResult result;
   Eigen::VectorXd velocity_after;  // per coordinate (m/s), after the last impact
   double impact_time = 0.0;        // s, when the first impact began
   double wall_time = 0.0;          // s spent in the impact computations

@@ -159,8 +159,8 @@ struct PackingScene {
   bool adaptive() const {
     return method == granular::Method::lzb && impact.integrator == plugins::LzbIntegrator::adaptive;
   }
-  // the record of the chains' impact runs: the beads as bodies
-  granular::RecordSpec chain_record() const;
+  // what the run records (granular::run_scene): the beads as bodies
+  granular::RecordSpec run_record() const;
 };
 
 // Reads a scene document; `directory` is where bead lists are looked for. Throws InvalidInput
