@@ -5,6 +5,7 @@
 
 #include "compliant_state.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/numerics/internal/dense_output.hpp"
 #include "mimpact/numerics/internal/event_scan.hpp"
 #include "mimpact/numerics/internal/root_bracketing.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
@@ -23,6 +24,10 @@ using compliant::JacobianEntry;
 using compliant::kNever;
 using compliant::linear_gap;
 using internal::ContactEvent;
+
+CompliantIntegrator::State::State(const numerics::OdeOptions& options)
+    : dense(std::make_unique<numerics::internal::DenseOutput>(options)) {}
+CompliantIntegrator::State::~State() = default;
 
 CompliantIntegrator::CompliantIntegrator(CompliantOptions options) : options_(options) {
   validate(options_, "compliant integrator");
@@ -124,6 +129,45 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
   history_.all_open = contacts_open();
 }
 
+// The integration restarted on the moving set as it is now: slots, the watched contacts, the
+// state y = (displacements, velocities, impulses since now).
+void CompliantIntegrator::restart() {
+  State& s = *state_;
+  std::sort(s.moving.begin(), s.moving.end());
+  s.moving_coordinates = 0;
+  for (Index k : s.moving) {
+    s.body(k).slot = s.moving_coordinates;
+    s.moving_coordinates += s.body(k).size;
+  }
+  s.most_moving = std::max(s.most_moving, Index(s.moving.size()));
+  for (std::size_t a = 0; a < s.joined.size(); ++a) s.contact(s.joined[a]).slot = Index(a);
+  // y = (displacements, velocities, impulses since now)
+  s.y.assign(2 * std::size_t(s.moving_coordinates) + s.joined.size(), 0.0);
+  for (Index k : s.moving) {
+    const Body& b = s.body(k);
+    for (Index i = 0; i < b.size; ++i)
+      s.y[std::size_t(s.moving_coordinates + b.slot + i)] = s.anchor_v(b.offset + i);
+  }
+  // the contacts the integrated bodies touch
+  ++s.stamp;
+  s.watched.clear();
+  for (Index k : s.moving)
+    for (Index j : system_->interactions_of(k))
+      if (s.watch_stamp[std::size_t(j)] != s.stamp) {
+        s.watch_stamp[std::size_t(j)] = s.stamp;
+        s.watched.push_back(j);
+      }
+  for (GapSamples* samples : {&s.before, &s.after}) {
+    samples->gap.resize(s.watched.size());
+    samples->rate.resize(s.watched.size());
+  }
+  s.generalized.resize(s.moving_coordinates);
+  s.probe = s.y;
+  start_accounting();
+  // after an event, the step the integration last took
+  s.dense->restart(s.y, time_, s.dense->last_step() > 0.0 ? s.dense->last_step() : 1e-7);
+}
+
 // ---- the motion ----------------------------------------------------------------------------
 
 void CompliantIntegrator::evaluate(double t, const double* y, double* dydt) {
@@ -194,12 +238,12 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
       reached = true;
       break;
     }
-    if (s.dense.time() <= time_) {
+    if (s.dense->time() <= time_) {
       take_step();
       ++report.smooth_steps;
       continue;
     }
-    const double end_of_step = std::min(s.dense.time(), target);
+    const double end_of_step = std::min(s.dense->time(), target);
     Event event;
     const bool found = next_event(time_, end_of_step, event);
     end_segment(found ? event.time : end_of_step);
@@ -219,11 +263,11 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
 
 void CompliantIntegrator::take_step() {
   State& s = *state_;
-  s.dense.step([this](const numerics::internal::DenseOutput::State& y,
-                      numerics::internal::DenseOutput::State& dydt,
-                      double t) { evaluate(t, y.data(), dydt.data()); });
-  const double t = s.dense.time();
-  if (s.dense.steps() > options_.max_steps) {
+  s.dense->step([this](const numerics::internal::DenseOutput::State& y,
+                       numerics::internal::DenseOutput::State& dydt,
+                       double t) { evaluate(t, y.data(), dydt.data()); });
+  const double t = s.dense->time();
+  if (s.dense->steps() > options_.max_steps) {
     // beads that keep almost nothing of their approach stay in contact at nearly zero force and
     // touch again and again: the usual cause, which the message names
     const bool plastic =
@@ -238,7 +282,7 @@ void CompliantIntegrator::take_step() {
                            "precision resolve (check the speeds and stiffnesses, or loosen the "
                            "tolerance)"));
   }
-  const numerics::internal::DenseOutput::State& now = s.dense.state();
+  const numerics::internal::DenseOutput::State& now = s.dense->state();
   if (!std::all_of(now.begin(), now.end(), [](double x) { return std::isfinite(x); }))
     throw Error("compliant integrator: the state is not finite at t = " + to_text(t) +
                 " s; speeds, forces or stiffnesses are out of the range double precision carries");
@@ -248,7 +292,7 @@ void CompliantIntegrator::take_step() {
 void CompliantIntegrator::measure(double t, std::span<const Index> contacts,
                                   std::vector<double>& gap, std::vector<double>& rate) {
   State& s = *state_;
-  s.dense.state_at(t, s.probe);
+  s.dense->state_at(t, s.probe);
   if (!s.linear) {
     for (Index k : s.moving) {
       const Body& body = s.body(k);
@@ -339,7 +383,7 @@ bool CompliantIntegrator::next_predicted_join(double a, double b, Event& event) 
 
 void CompliantIntegrator::end_segment(double end) {
   State& s = *state_;
-  s.dense.state_at(end, s.y);
+  s.dense->state_at(end, s.y);
   time_ = end;
   account_work(end);
   for (Index j : s.joined) {

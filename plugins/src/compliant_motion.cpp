@@ -4,7 +4,7 @@
 
 // The moving-body set of the compliant integrator (docs/model.md, section 11): which bodies are
 // integrated and which fly freely, the contacts that join and leave, the joins computed in
-// closed form between bodies in free flight, and the restart of the integration on a new set.
+// closed form between bodies in free flight.
 namespace mimpact::plugins {
 
 using compliant::Body;
@@ -130,43 +130,6 @@ void CompliantIntegrator::forget_prediction(Index j) {
   if (!c.predicted) return;
   c.predicted = false;
   --s.pending_predictions;
-}
-
-void CompliantIntegrator::restart() {
-  State& s = *state_;
-  std::sort(s.moving.begin(), s.moving.end());
-  s.moving_coordinates = 0;
-  for (Index k : s.moving) {
-    s.body(k).slot = s.moving_coordinates;
-    s.moving_coordinates += s.body(k).size;
-  }
-  s.most_moving = std::max(s.most_moving, Index(s.moving.size()));
-  for (std::size_t a = 0; a < s.joined.size(); ++a) s.contact(s.joined[a]).slot = Index(a);
-  // y = (displacements, velocities, impulses since now)
-  s.y.assign(2 * std::size_t(s.moving_coordinates) + s.joined.size(), 0.0);
-  for (Index k : s.moving) {
-    const Body& b = s.body(k);
-    for (Index i = 0; i < b.size; ++i)
-      s.y[std::size_t(s.moving_coordinates + b.slot + i)] = s.anchor_v(b.offset + i);
-  }
-  // the contacts the integrated bodies touch
-  ++s.stamp;
-  s.watched.clear();
-  for (Index k : s.moving)
-    for (Index j : system_->interactions_of(k))
-      if (s.watch_stamp[std::size_t(j)] != s.stamp) {
-        s.watch_stamp[std::size_t(j)] = s.stamp;
-        s.watched.push_back(j);
-      }
-  for (GapSamples* samples : {&s.before, &s.after}) {
-    samples->gap.resize(s.watched.size());
-    samples->rate.resize(s.watched.size());
-  }
-  s.generalized.resize(s.moving_coordinates);
-  s.probe = s.y;
-  start_accounting();
-  // after an event, the step the integration last took
-  s.dense.restart(s.y, time_, s.dense.last_step() > 0.0 ? s.dense.last_step() : 1e-7);
 }
 
 // Behind a wave, bodies left at rest against each other approach with speeds of the order of

@@ -2,21 +2,25 @@
 
 // What the parts of the compliant integrator share: the bodies and contacts as the integration
 // sees them, and its state. The parts: compliant_integrator.cpp (the advance: steps, events
-// located and handled), compliant_motion.cpp (the moving-body set: who is integrated, who flies
-// freely, joins computed in closed form), compliant_ledger.cpp (the contact laws' force and
-// energy, the energy ledger); the events' classification is a pure function
-// (mimpact/plugins/internal/contact_events.hpp).
+// located and handled, the restarts of the integration), compliant_motion.cpp (the moving-body
+// set: who is integrated, who flies freely, joins computed in closed form), compliant_ledger.cpp
+// (the contact laws' force and energy, the energy ledger); the events' classification is a pure
+// function (mimpact/plugins/internal/contact_events.hpp).
 
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <queue>
 #include <vector>
 
-#include "mimpact/numerics/internal/dense_output.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/plugins/internal/contact_events.hpp"
 #include "mimpact/plugins/internal/mass_block.hpp"
+
+namespace mimpact::numerics::internal {
+class DenseOutput;  // Boost.Odeint's Dormand-Prince: only compliant_integrator.cpp compiles it
+}
 
 namespace mimpact::plugins {
 namespace compliant {
@@ -78,10 +82,11 @@ struct CompliantIntegrator::State {
   using Index = kernel::Index;
   using VectorXd = kernel::VectorXd;
 
-  explicit State(const numerics::OdeOptions& options) : dense(options) {}
+  explicit State(const numerics::OdeOptions& options);
+  ~State();
 
-  numerics::internal::DenseOutput dense;
-  numerics::internal::DenseOutput::State y, probe;
+  std::unique_ptr<numerics::internal::DenseOutput> dense;
+  std::vector<double> y, probe;  // the integrated state and a workspace
   bool linear = true;
   double join_overlap = 0.0, leave_overlap = 0.0;  // m
   std::vector<compliant::Body> bodies;

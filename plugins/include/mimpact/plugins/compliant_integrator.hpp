@@ -112,7 +112,7 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   void write_back(kernel::Index body);
 
   // who takes part (compliant_motion.cpp): the integrated state folded into the bodies' anchors,
-  // bodies set in motion or in free flight, and the integration restarted on the new set
+  // bodies set in motion or in free flight, contacts that join and leave
   void commit_motion();
   void set_in_motion(kernel::Index body);
   void fold_flight(kernel::Index body);
@@ -121,6 +121,7 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   void leave(kernel::Index contact);
   void predict_join(kernel::Index contact);
   void forget_prediction(kernel::Index contact);
+  // the integration restarted on the moving set (compliant_integrator.cpp)
   void restart();
 
   void evaluate(double t, const double* y, double* dydt);
