@@ -11,7 +11,8 @@
 namespace mimpact::granular {
 
 // What the impact runs read of a granular scene, in generalized coordinates: one per bead on a
-// line (ChainModel), two per bead in the plane (packings::PackingModel). Coordinate
+// line (chains::ChainModel), `dimension` per bead in a packing (packings::PackingModel, two in
+// the plane). Coordinate
 // `dimension * b + k` is component k of body b's position, and body b is the kernel system b of
 // the scene's NonSmoothDynamicalSystem.
 struct ContactModel {
