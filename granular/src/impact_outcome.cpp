@@ -6,6 +6,7 @@
 
 #include "mimpact/common/error.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
+#include "mimpact/granular/moving_contacts.hpp"
 #include "mimpact/kernel/registry.hpp"
 #include "mimpact/kernel/simulation.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
@@ -204,11 +205,15 @@ ImpactOutcome simulate_impact_numerics(const ContactModel& model,
   return impact;
 }
 
-CompliantRun simulate_compliant(const ContactModel& model,
-                                std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
-                                const CompliantSpec& spec, const RecordSpec& record,
-                                int frame_every, const RunLimits& limits) {
-  plugins::register_plugins();
+namespace {
+
+// The compliant integration's error control, whichever geometry: the relative tolerance, the
+// positions' absolute one (m) and the overlap a contact joins at (m).
+struct CompliantTolerances {
+  double relative, absolute, resolution;
+};
+
+CompliantTolerances compliant_tolerances(const ContactModel& model, const CompliantSpec& spec) {
   // Looser than kLoosestTolerance, the integration's velocity errors set off collisions in the
   // wake of the wave that cost more steps than the looser control saves.
   const double tolerance = std::min(spec.tolerance, kLoosestTolerance);
@@ -220,17 +225,118 @@ CompliantRun simulate_compliant(const ContactModel& model,
       std::max(kOverlapResolution,
                10.0 * std::pow(tolerance, 2.0 / (1.0 + model.laws.front().exponent))) *
       overlap;
+  // the positions to the tolerance's share of the impact's overlap
+  return {tolerance, 1e-2 * tolerance * overlap, resolution};
+}
+
+// The compliant contacts where the bodies are (MovingContacts), sampled every record.interval.
+CompliantRun simulate_moving(const ContactModel& model, const CompliantSpec& spec,
+                             const RecordSpec& record, int frame_every, const RunLimits& limits) {
+  const CompliantTolerances tolerances = compliant_tolerances(model, spec);
+  MovingContactsOptions options;
+  options.ode.relative_tolerance = tolerances.relative;
+  options.ode.absolute_tolerance = tolerances.absolute;
+  options.ode.event_tolerance = 1e-13;
+  options.overlap_resolution = tolerances.resolution;
+  options.max_steps = spec.max_steps;
+  const int d = model.dimension;
+  std::vector<Eigen::Vector3d> velocity(std::size_t(model.body_count()), Eigen::Vector3d::Zero());
+  for (Eigen::Index b = 0; b < model.body_count(); ++b)
+    velocity[std::size_t(b)].head(d) = model.velocity.segment(d * b, d);
+  const auto clock = std::chrono::steady_clock::now();
+  MovingContacts motion(*model.beads, velocity, model.beads->closed, options);
+  const double end = spec.end_time.value_or(1.0);
+  const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
+  CompliantRun run;
+  run.series.contacts = record.contacts;
+  run.series.bodies = record.bodies;
+  run.series.dimension = d;
+  const double impact_time =
+      *std::min_element(model.striker_arrivals.begin(), model.striker_arrivals.end());
+  if (recording) {
+    RecordingBudget budget = compliant_budget(model, record, frame_every, limits);
+    const double samples = (impact_time + impact_duration_bound(model)) / record.interval;
+    budget.check_estimate(samples, frame_every > 0 ? samples / double(frame_every) : 0.0);
+    for (std::int64_t k = 0;; ++k) {
+      const double t = std::min(end, double(k) * record.interval);
+      motion.advance(t);
+      run.series.time.push_back(motion.time() - impact_time);
+      std::vector<double> forces, velocities;
+      for (int c : record.contacts) forces.push_back(motion.contacts()[std::size_t(c)].force);
+      for (int b : record.bodies)
+        for (int i = 0; i < d; ++i) velocities.push_back(motion.velocity(b)(i));
+      run.series.force.push_back(std::move(forces));
+      run.series.velocity.push_back(std::move(velocities));
+      const bool frame = frame_every > 0 && k % frame_every == 0;
+      budget.add(frame);
+      if (frame) {
+        run.frames.time.push_back(motion.time() - impact_time);
+        std::vector<double> all_forces, all_velocities;
+        for (Eigen::Index c = 0; c < model.contact_count(); ++c)
+          all_forces.push_back(motion.contacts()[std::size_t(c)].force);
+        for (Eigen::Index b = 0; b < model.body_count(); ++b)
+          for (int i = 0; i < d; ++i) all_velocities.push_back(motion.velocity(b)(i));
+        run.frames.force.push_back(std::move(all_forces));
+        run.frames.velocity.push_back(std::move(all_velocities));
+      }
+      if (t >= end || motion.ended()) break;
+    }
+  } else {
+    motion.advance(end);
+  }
+  ImpactOutcome& impact = run.impact;
+  impact.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  impact.impact_time = impact_time;
+  const Eigen::Index m = model.contact_count();
+  numerics::LzbResult& result = impact.result;
+  result.impulse.resize(m);
+  result.max_force.resize(m);
+  result.time_of_max_force.resize(m);
+  result.work.resize(m);
+  result.stored_energy.resize(m);
+  for (Eigen::Index c = 0; c < m; ++c) {
+    const MovingContact& contact = motion.contacts()[std::size_t(c)];
+    result.impulse(c) = contact.impulse;
+    result.max_force(c) = contact.max_force;
+    result.time_of_max_force(c) = contact.time_of_max_force - impact_time;
+    result.work(c) = contact.work();
+    result.stored_energy(c) = contact.stored_energy;
+  }
+  result.steps = motion.stats().steps;
+  result.duration = motion.time() - impact_time;
+  impact.stored_energy_at_start = Eigen::VectorXd::Zero(m);
+  impact.cut_by_end_time = !motion.ended();
+  impact.velocity_after.resize(model.mass.size());
+  for (Eigen::Index b = 0; b < model.body_count(); ++b)
+    impact.velocity_after.segment(b * d, d) = motion.velocity(b).head(d);
+  result.velocity = model.W.transpose() * impact.velocity_after;
+  impact.impact_times = {impact_time};
+  impact.velocities_before = {model.velocity};
+  run.most_bodies_in_motion = motion.stats().most_bodies_in_motion;
+  run.moving = motion.stats();
+  return run;
+}
+
+}  // namespace
+
+CompliantRun simulate_compliant(const ContactModel& model,
+                                std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                                const CompliantSpec& spec, const RecordSpec& record,
+                                int frame_every, const RunLimits& limits) {
+  if (spec.geometry == Geometry::moving && model.beads)
+    return simulate_moving(model, spec, record, frame_every, limits);
+  plugins::register_plugins();
+  const auto [tolerance, absolute_tolerance, resolution] = compliant_tolerances(model, spec);
   kernel::SimulationOptions simulation_options;
   simulation_options.penetration_tolerance += model.largest_static_overlap;  // precompressed
   kernel::Simulation simulation(
       system,
-      kernel::integrators().create(
-          "compliant", {{"relative_tolerance", tolerance},
-                        // the positions to the tolerance's share of the impact's overlap
-                        {"absolute_tolerance", 1e-2 * tolerance * overlap},
-                        {"overlap_resolution", resolution},
-                        {"frozen_gaps", spec.gaps == Gaps::frozen},
-                        {"max_steps", spec.max_steps}}),
+      kernel::integrators().create("compliant", {{"relative_tolerance", tolerance},
+                                                 {"absolute_tolerance", absolute_tolerance},
+                                                 {"overlap_resolution", resolution},
+                                                 {"frozen_gaps", spec.gaps == Gaps::frozen},
+                                                 {"max_steps", spec.max_steps}}),
       {}, simulation_options);
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;

@@ -384,6 +384,36 @@ class PackingBuilder {
           "no striker approaches its target: the packing is struck by nothing; allowed: a "
           "striker whose velocity points at the bead it targets");
     granular::check_impact_scales(model_);
+    model_.beads = std::make_shared<const granular::BeadGeometry>(bead_geometry());
+  }
+
+  // the same bodies as spheres, for the moving geometry
+  granular::BeadGeometry bead_geometry() const {
+    granular::BeadGeometry beads;
+    beads.dimension = model_.dimension;
+    const auto padded = [](const Vector& x) {
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      p.head(x.size()) = x;
+      return p;
+    };
+    beads.radius = model_.radius;
+    beads.mass.resize(model_.body_count());
+    for (const Body& body : bodies_) {
+      beads.position.push_back(padded(body.centre));
+      beads.material.push_back(body.material);
+    }
+    for (Eigen::Index b = 0; b < model_.body_count(); ++b)
+      beads.mass(b) = model_.mass(model_.dimension * b);
+    for (std::size_t w = 0; w < model_.wall_points.size(); ++w) {
+      beads.walls.push_back({padded(model_.wall_points[w]), padded(model_.wall_normals[w])});
+      beads.wall_material.push_back(scene_.walls[w].material);
+    }
+    beads.shape = scene_.contact.law(0.0);
+    beads.fixed_stiffness = scene_.contact.stiffness.value_or(0.0);
+    for (const PackingContact& c : model_.contacts)
+      beads.closed.emplace_back(std::int32_t(c.first),
+                                c.second >= 0 ? std::int32_t(c.second) : std::int32_t(-1 - c.wall));
+    return beads;
   }
 
   const PackingScene& scene_;

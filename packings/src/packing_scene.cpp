@@ -34,6 +34,11 @@ void check_packing(const PackingScene& scene, const SceneChecks& checks) {
                 to_text(double(scene.lattice->rows) * scene.lattice->columns) +
                 " beads; allowed: at most 1e8");
   scene.contact.check(checks);
+  if (scene.compliant.gaps == granular::Gaps::frozen &&
+      scene.compliant.geometry == granular::Geometry::moving)
+    checks.fail(
+        "compliant.gaps = \"frozen\" with compliant.geometry = \"moving\"; allowed: frozen "
+        "gaps in the frozen geometry only (the moving geometry's gaps are the beads' own)");
 }
 
 void check_walls(const PackingScene& scene, const SceneChecks& checks) {

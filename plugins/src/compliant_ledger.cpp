@@ -14,27 +14,11 @@ using kernel::Index;
 using kernel::VectorXd;
 
 double CompliantIntegrator::contact_energy(std::size_t j, double delta) const {
-  if (!(delta > 0.0)) return 0.0;
-  const numerics::ContactLaw& law = laws_[j];
-  const double delta_max = max_compression_[j];
-  if (delta >= delta_max || law.restitution >= 1.0)
-    return law.force(delta) * delta / (1.0 + law.exponent);
-  // the unloading curve from delta_max, which reaches 0 at delta_r (contact_force)
-  const double delta_r = delta_max * (1.0 - law.restitution * law.restitution);
-  if (delta <= delta_r) return 0.0;
-  return contact_force(j, delta) * (delta - delta_r) / (1.0 + law.exponent);
+  return numerics::hysteresis_energy(laws_[j], delta, max_compression_[j]);
 }
 
 double CompliantIntegrator::contact_force(std::size_t j, double delta) const {
-  if (!(delta > 0.0)) return 0.0;
-  const numerics::ContactLaw& law = laws_[j];
-  const double delta_max = max_compression_[j];
-  if (delta >= delta_max || law.restitution >= 1.0) return law.force(delta);
-  const double e = law.restitution;
-  const double delta_r = delta_max * (1.0 - e * e);
-  if (delta <= delta_r) return 0.0;
-  return law.force(delta_max) *
-         numerics::power_law((delta - delta_r) / (delta_max - delta_r), law.exponent);
+  return numerics::hysteresis_force(laws_[j], delta, max_compression_[j]);
 }
 
 // The ledger's accounting points are the segment ends: over any part of a Dormand-Prince step

@@ -3,9 +3,11 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "mimpact/granular/bead_geometry.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 
 namespace mimpact::granular {
@@ -28,6 +30,9 @@ struct ContactModel {
   // N: a constant force presses the bodies together; they start at their static overlaps
   double precompression = 0.0;
   double largest_static_overlap = 0.0;  // m: the compliant contacts start this far in
+  // the bodies as spheres, for the compliant contacts in the moving geometry (a packing); none
+  // for a chain, whose gaps are exactly linear
+  std::shared_ptr<const BeadGeometry> beads;
 
   Eigen::Index body_count() const { return mass.size() / dimension; }
   Eigen::Index contact_count() const { return Eigen::Index(laws.size()); }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/moving_contacts.hpp"
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/granular/time_series.hpp"
@@ -61,6 +62,7 @@ struct CompliantRun {
   Frames frames;  // every frame_every outputs, when asked for
   // the most bodies integrated at once: the others flew in closed form
   Eigen::Index most_bodies_in_motion = 0;
+  MovingContactsStats moving;  // the moving geometry's counts (zero in the frozen one)
 };
 
 // The impact computed with the compliant contacts integrated in time (method "compliant"): the

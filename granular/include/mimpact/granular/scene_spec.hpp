@@ -61,10 +61,20 @@ constexpr auto enum_names(Gaps) {
   return std::array{Name{Gaps::open, "open"}, Name{Gaps::frozen, "frozen"}};
 }
 
+// Where the compliant contacts are: at the configuration of the impact, LZB's own assumption
+// (gaps along frozen normals), or where the bodies are now (docs/model.md, section 17). A
+// chain's gaps are linear: both are the same there.
+enum class Geometry { moving, frozen };
+constexpr auto enum_names(Geometry) {
+  using Name = std::pair<Geometry, std::string_view>;
+  return std::array{Name{Geometry::moving, "moving"}, Name{Geometry::frozen, "frozen"}};
+}
+
 struct CompliantSpec {
   double tolerance = 1e-10;        // relative error control of the integration
   std::optional<double> end_time;  // s; required with a precompression
   Gaps gaps = Gaps::open;
+  Geometry geometry = Geometry::moving;
   std::int64_t max_steps = 10'000'000;  // time steps before the run is abandoned
 
   template <class Self, class Visit>
@@ -74,6 +84,7 @@ struct CompliantSpec {
           within(1e-14, 1.0, {}, false, true).described("1e-14 <= tolerance < 1"));
     field("end_time", self.end_time, positive("s"));
     field("gaps", self.gaps);
+    field("geometry", self.geometry);
     field("max_steps", self.max_steps, at_least(1, "time steps"));
   }
 };

@@ -69,4 +69,28 @@ inline double ContactLaw::force(double delta) const {
   return stiffness * power_law(delta, exponent);
 }
 
+// The force (N) of a compliant contact at overlap delta (m) whose largest overlap since it
+// closed is delta_max: K delta^eta on loading (delta >= delta_max), and for e < 1 the stiffer
+// unloading and reloading curve F_M ((delta - delta_r) / (delta_max - delta_r))^eta, with
+// delta_r = delta_max (1 - e^2) and F_M = K delta_max^eta (docs/model.md, section 3): the
+// compliant model the LZB impact reparametrizes, integrated in time.
+inline double hysteresis_force(const ContactLaw& law, double delta, double delta_max) {
+  if (!(delta > 0.0)) return 0.0;
+  if (delta >= delta_max || law.restitution >= 1.0) return law.force(delta);
+  const double e = law.restitution;
+  const double delta_r = delta_max * (1.0 - e * e);
+  if (delta <= delta_r) return 0.0;
+  return law.force(delta_max) * power_law((delta - delta_r) / (delta_max - delta_r), law.exponent);
+}
+
+// Its potential energy (J) there, on the curve it is on.
+inline double hysteresis_energy(const ContactLaw& law, double delta, double delta_max) {
+  if (!(delta > 0.0)) return 0.0;
+  if (delta >= delta_max || law.restitution >= 1.0)
+    return law.force(delta) * delta / (1.0 + law.exponent);
+  const double delta_r = delta_max * (1.0 - law.restitution * law.restitution);
+  if (delta <= delta_r) return 0.0;
+  return hysteresis_force(law, delta, delta_max) * (delta - delta_r) / (1.0 + law.exponent);
+}
+
 }  // namespace mimpact::numerics

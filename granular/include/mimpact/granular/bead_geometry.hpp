@@ -1,0 +1,59 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "mimpact/granular/hertz.hpp"
+#include "mimpact/numerics/contact_law.hpp"
+
+// Spheres and planes as they are, not frozen: the geometry the compliant contacts integrate in
+// (docs/model.md, section 17). A chain or packing gives its bodies' centres, radii and
+// stiffnesses here; the gaps and normals follow from the current positions.
+namespace mimpact::granular {
+
+// A rigid plane: the beads lie on the side its unit normal points to.
+struct Plane {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    // m
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit
+};
+
+// Beads of any dimension (1 to 3: the components beyond it are 0) and the walls they meet.
+// The contact law of two beads, or of a bead and a wall, is `shape` with the stiffness of the
+// Hertz contact of their radii and materials (hertz.hpp).
+struct BeadGeometry {
+  int dimension = 2;
+  std::vector<Eigen::Vector3d> position;  // m, of the centres at the start
+  Eigen::VectorXd radius;                 // m, per body
+  Eigen::VectorXd mass;                   // kg, per body
+  std::vector<Plane> walls;
+  // the law of every contact but its stiffness: model, exponent, restitution
+  numerics::ContactLaw shape;
+  std::vector<Material> material, wall_material;  // per body, per wall
+  // N/m^eta: every contact's stiffness when > 0 (a scene's contact.stiffness), else Hertz's
+  double fixed_stiffness = 0.0;
+  // the contacts closed at the start, as the contact model numbers them: two bodies, or a body
+  // and -1 - wall
+  std::vector<std::pair<std::int32_t, std::int32_t>> closed;
+
+  Eigen::Index body_count() const { return radius.size(); }
+  // the law of bodies i and k, and of body i and wall w: `shape` with their Hertz stiffness
+  numerics::ContactLaw bead_law(Eigen::Index i, Eigen::Index k) const {
+    numerics::ContactLaw law = shape;
+    law.stiffness = fixed_stiffness > 0.0 ? fixed_stiffness
+                                          : hertz_stiffness(radius(i), material[std::size_t(i)],
+                                                            radius(k), material[std::size_t(k)]);
+    return law;
+  }
+  numerics::ContactLaw wall_law(Eigen::Index i, std::size_t w) const {
+    numerics::ContactLaw law = shape;
+    law.stiffness =
+        fixed_stiffness > 0.0
+            ? fixed_stiffness
+            : hertz_stiffness_wall(radius(i), material[std::size_t(i)], wall_material[w]);
+    return law;
+  }
+};
+
+}  // namespace mimpact::granular

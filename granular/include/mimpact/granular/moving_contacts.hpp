@@ -1,0 +1,139 @@
+#pragma once
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "mimpact/common/fields.hpp"
+#include "mimpact/granular/bead_geometry.hpp"
+#include "mimpact/granular/neighbour_lists.hpp"
+#include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/ode_options.hpp"
+
+namespace mimpact::granular {
+
+struct MovingContactsOptions {
+  // the integration of each group: Dormand-Prince 5(4) to these tolerances (positions to
+  // absolute_tolerance m, velocities to absolute_tolerance / s), events to event_tolerance s
+  numerics::OdeOptions ode{.absolute_tolerance = 1e-17,
+                           .relative_tolerance = 1e-10,
+                           .event_tolerance = 1e-13,
+                           .samples_per_step = 4};
+  // m: a contact carries force once its overlap exceeds this, and until it falls below half of
+  // it (a grazing contact does not join and leave at every step)
+  double overlap_resolution = 1e-12;
+  // m: the neighbour lists' skin; 0: a fifth of the smallest radius
+  double skin = 0.0;
+  std::int64_t max_steps = 10'000'000;  // time steps of all groups, before the run is abandoned
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    numerics::OdeOptions::visit_fields(self.ode, field);
+    field("overlap_resolution", self.overlap_resolution, positive("m"));
+    field("skin", self.skin, at_least(0.0, "m, 0 for a fifth of the smallest radius"));
+    field("max_steps", self.max_steps, at_least(1));
+  }
+};
+
+// One contact that has carried force: two bodies, or a body and a wall.
+struct MovingContact {
+  std::int32_t first = 0;
+  std::int32_t second = 0;  // a body, or -1 - w for wall w
+  numerics::ContactLaw law;
+  bool joined = false;           // carries force now
+  double max_compression = 0.0;  // m, since it last closed: where it unloads from (e < 1)
+  double impulse = 0.0;          // N s, of its force over the run
+  double force = 0.0;            // N, now
+  double max_force = 0.0;        // N, and when (s)
+  double time_of_max_force = 0.0;
+  double dissipated = 0.0;     // J, lost at its turns from loading to unloading (e < 1)
+  double stored_energy = 0.0;  // J, now
+
+  bool wall() const { return second < 0; }
+  // the work the bodies have done on it so far (J), the energy ledger's sign (compression
+  // work positive): what it holds and what it lost
+  double work() const { return stored_energy + dissipated; }
+};
+
+struct MovingContactsStats {
+  std::int64_t steps = 0;           // time steps of all groups
+  std::int64_t windows = 0;         // synchronisation windows
+  std::int64_t redone_groups = 0;   // groups integrated again over a window (they met another)
+  std::int64_t group_restarts = 0;  // restarts of a group's integration at its own events
+  std::int64_t most_bodies_in_motion = 0;
+  std::int64_t largest_group = 0;
+  std::int64_t list_refreshes = 0;
+};
+
+// The compliant contacts in the moving geometry (docs/model.md, section 17): beads and walls
+// with the gaps and normals of their current positions, g = |x_k - x_i| - r_i - r_k along
+// n = (x_k - x_i) / |x_k - x_i|, contacts found as they form (NeighbourLists), each with the
+// law of its pair (Hertz loading, bi-stiffness unloading for e < 1, docs/model.md section 3).
+//
+// The cost follows what moves. A body that carries no force flies in closed form and costs
+// nothing. The others are split into groups, the bodies linked by loaded contacts (and those
+// close enough to meet them within a window): each group is integrated on its own by
+// Dormand-Prince 5(4), with its own steps, and restarts only at its own events (a contact
+// joining, leaving, or turning to unload), located with dense output (TOMS 748). Groups meet
+// only at the ends of short windows (a quarter of the quickest contact's duration): a window
+// in which two groups touched, or took the same body, is integrated again for them as one.
+class MovingContacts {
+ public:
+  using Options = MovingContactsOptions;
+  // `velocity` per body; `closed`: the contacts to report first, in order (their records are
+  // contacts()[0, closed.size()), whether or not they carry force). Throws InvalidInput naming
+  // an option out of range.
+  MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::Vector3d> velocity,
+                 const std::vector<std::pair<std::int32_t, std::int32_t>>& closed,
+                 MovingContactsOptions options = {});
+  ~MovingContacts();
+
+  // Advances to `target`, or until the motion ends (ended()); returns the time reached.
+  double advance(double target);
+  // No contact carries force and no two bodies within the lists' reach approach each other:
+  // nothing will change but the flights.
+  bool ended() const;
+  double time() const { return time_; }
+  Eigen::Vector3d position(Eigen::Index body) const;
+  Eigen::Vector3d velocity(Eigen::Index body) const;
+  // every contact that has carried force, and those given at construction
+  const std::vector<MovingContact>& contacts() const { return contacts_; }
+  // the kinetic energy of the bodies and the energy their contacts hold (J)
+  double kinetic_energy() const;
+  double stored_energy() const;
+  const MovingContactsStats& stats() const { return stats_; }
+
+ private:
+  struct Body;
+  class Group;
+  friend class Group;
+
+  void run_window(double end);
+  void refresh_lists(double end);
+  void form_groups();
+  void form_collision_groups(double end);
+  bool merge_groups_that_met();
+  double next_meeting(double target) const;
+  void note_moving(std::int32_t body);
+  std::int32_t contact_id(std::int32_t first, std::int32_t second);
+
+  const BeadGeometry& geometry_;
+  MovingContactsOptions options_;
+  NeighbourLists lists_;
+  std::vector<Body> bodies_;
+  std::vector<std::int32_t> moving_;  // bodies that have moved: the only ones whose lists move
+  std::vector<MovingContact> contacts_;
+  std::unordered_map<std::uint64_t, std::int32_t> contact_ids_;
+  std::vector<std::int32_t> loaded_ids_;  // contacts carrying force now
+  std::vector<std::unique_ptr<Group>> groups_;
+  double time_ = 0.0;
+  double speed_bound_ = 0.0;  // m/s: no body moves faster (the energy is all it can have)
+  double window_ = 0.0;       // s
+  double first_step_ = 0.0;   // s, of a group that starts from nothing
+  MovingContactsStats stats_;
+};
+
+}  // namespace mimpact::granular

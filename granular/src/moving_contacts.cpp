@@ -1,0 +1,353 @@
+#include "mimpact/granular/moving_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "mimpact/common/error.hpp"
+#include "moving_group.hpp"
+
+// The windows of the moving-geometry integration (docs/model.md, section 17): groups formed
+// from the loaded contacts, collisions of bodies flying freely, the groups integrated each on
+// its own, checked against each other at the window's end, merged and integrated again where
+// they met, then committed.
+namespace mimpact::granular {
+
+namespace {
+
+// Union-find over small integers, for the groups' components.
+class Components {
+ public:
+  explicit Components(std::size_t n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), std::int32_t(0));
+  }
+  std::int32_t find(std::int32_t i) {
+    while (parent_[std::size_t(i)] != i)
+      i = parent_[std::size_t(i)] = parent_[std::size_t(parent_[std::size_t(i)])];
+    return i;
+  }
+  void join(std::int32_t a, std::int32_t b) { parent_[std::size_t(find(a))] = find(b); }
+
+ private:
+  std::vector<std::int32_t> parent_;
+};
+
+// The time in [0, horizon] at which two bodies flying freely come within `reach` of each other
+// (|between + closing t| = reach), or infinity.
+double meeting_time(const Eigen::Vector3d& between, const Eigen::Vector3d& relative, double reach,
+                    double horizon) {
+  const double b = between.dot(relative);
+  if (b >= 0.0) return INFINITY;  // not approaching
+  const double a = relative.squaredNorm();
+  const double c = between.squaredNorm() - reach * reach;
+  if (c <= 0.0) return 0.0;
+  const double discriminant = b * b - a * c;
+  if (discriminant < 0.0) return INFINITY;
+  const double t = c / (-b + std::sqrt(discriminant));  // the smaller root, without cancellation
+  return t <= horizon ? t : INFINITY;
+}
+
+}  // namespace
+
+MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::Vector3d> velocity,
+                               const std::vector<std::pair<std::int32_t, std::int32_t>>& closed,
+                               MovingContactsOptions options)
+    : geometry_(geometry),
+      options_((validate(options, "moving contacts"), options)),
+      lists_(geometry, options.skin > 0.0 ? options.skin : 0.2 * geometry.radius.minCoeff()),
+      bodies_(std::size_t(geometry.body_count())) {
+  double energy = 0.0;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    bodies_[b].x = geometry.position[b];
+    bodies_[b].v = velocity[b];
+    bodies_[b].inverse_mass = 1.0 / geometry.mass(Eigen::Index(b));
+    energy += 0.5 * geometry.mass(Eigen::Index(b)) * velocity[b].squaredNorm();
+    if (velocity[b].squaredNorm() > 0.0) note_moving(std::int32_t(b));
+  }
+  for (const auto& [first, second] : closed) contact_id(first, second);
+  speed_bound_ = std::sqrt(2.0 * energy / geometry.mass.minCoeff());
+  // the quickest contact: the stiffest pair of the lightest bodies at twice the fastest speed
+  double stiffness = 0.0;
+  for (Eigen::Index b = 0; b < geometry.body_count(); ++b) {
+    stiffness = std::max(stiffness, geometry.bead_law(b, b).stiffness);
+    for (std::size_t w = 0; w < geometry.walls.size(); ++w)
+      stiffness = std::max(stiffness, geometry.wall_law(b, w).stiffness);
+  }
+  const double eta = geometry.shape.exponent, closing = 2.0 * speed_bound_;
+  const double overlap = std::pow(
+      (1.0 + eta) * 0.5 * geometry.mass.minCoeff() * closing * closing / (2.0 * 2.0 * stiffness),
+      1.0 / (1.0 + eta));
+  // a contact lasts about 3 overlap / closing speed (2.94 for Hertz): a quarter of that, and
+  // no body leaves its list's ball within a window
+  window_ = std::min(0.5 * overlap / closing, 0.25 * lists_.skin() / speed_bound_);
+  first_step_ = 1e-3 * overlap / closing;
+}
+
+MovingContacts::~MovingContacts() = default;
+
+std::int32_t MovingContacts::contact_id(std::int32_t first, std::int32_t second) {
+  if (second >= 0 && second < first) std::swap(first, second);
+  const auto [found, added] = contact_ids_.emplace(contact_key(first, second), 0);
+  if (!added) return found->second;
+  MovingContact c;
+  c.first = first;
+  c.second = second;
+  c.law = second >= 0 ? geometry_.bead_law(first, second)
+                      : geometry_.wall_law(first, std::size_t(-1 - second));
+  found->second = std::int32_t(contacts_.size());
+  contacts_.push_back(c);
+  return found->second;
+}
+
+Eigen::Vector3d MovingContacts::position(Eigen::Index body) const {
+  return bodies_[std::size_t(body)].position_at(time_);
+}
+Eigen::Vector3d MovingContacts::velocity(Eigen::Index body) const {
+  return bodies_[std::size_t(body)].v;
+}
+
+double MovingContacts::kinetic_energy() const {
+  double energy = 0.0;
+  for (const Body& b : bodies_) energy += 0.5 * b.v.squaredNorm() / b.inverse_mass;
+  return energy;
+}
+
+double MovingContacts::stored_energy() const {
+  double energy = 0.0;
+  for (std::int32_t id : loaded_ids_) energy += contacts_[std::size_t(id)].stored_energy;
+  return energy;
+}
+
+bool MovingContacts::ended() const {
+  if (!loaded_ids_.empty()) return false;
+  for (std::int32_t i : moving_) {
+    const Body& a = bodies_[std::size_t(i)];
+    const Eigen::Vector3d x = a.position_at(time_);
+    for (std::int32_t k : lists_.bodies_near(i)) {
+      const Body& b = bodies_[std::size_t(k)];
+      if ((b.position_at(time_) - x).dot(b.v - a.v) < 0.0) return false;
+    }
+    for (std::int32_t w : lists_.walls_near(i))
+      if (geometry_.walls[std::size_t(w)].normal.dot(a.v) < 0.0) return false;
+  }
+  return true;
+}
+
+double MovingContacts::advance(double target) {
+  while (time_ < target && !ended()) {
+    double end = std::min(target, time_ + window_);
+    if (loaded_ids_.empty()) end = std::min(target, std::max(end, next_meeting(target)));
+    run_window(end);
+  }
+  return time_;
+}
+
+// With nothing loaded: the earliest meeting of two bodies flying freely, no later than any of
+// them may leave its list's ball.
+double MovingContacts::next_meeting(double target) const {
+  double fastest = 0.0;
+  for (std::int32_t i : moving_) fastest = std::max(fastest, bodies_[std::size_t(i)].v.norm());
+  double horizon = std::min(target, time_ + 0.25 * lists_.skin() / fastest) - time_;
+  for (std::int32_t i : moving_) {
+    const Body& a = bodies_[std::size_t(i)];
+    for (std::int32_t k : lists_.bodies_near(i)) {
+      const Body& b = bodies_[std::size_t(k)];
+      horizon =
+          std::min(horizon, meeting_time(b.position_at(time_) - a.position_at(time_), b.v - a.v,
+                                         geometry_.radius(i) + geometry_.radius(k), horizon));
+    }
+  }
+  return time_ + horizon;
+}
+
+void MovingContacts::run_window(double end) {
+  refresh_lists(end);
+  groups_.clear();
+  form_groups();
+  form_collision_groups(end);
+  std::vector<bool> integrated;
+  while (true) {
+    integrated.resize(groups_.size(), false);
+    for (std::size_t g = 0; g < groups_.size(); ++g)
+      if (groups_[g] && !integrated[g]) {
+        groups_[g]->integrate(end);
+        integrated[g] = true;
+      }
+    if (!merge_groups_that_met()) break;
+  }
+  loaded_ids_.clear();
+  std::int64_t in_motion = 0;
+  for (const auto& group : groups_) {
+    if (!group) continue;
+    in_motion += std::int64_t(group->members().size());
+    stats_.largest_group = std::max(stats_.largest_group, std::int64_t(group->members().size()));
+    for (std::int32_t body : group->members()) note_moving(body);
+    group->commit();
+  }
+  stats_.most_bodies_in_motion = std::max(stats_.most_bodies_in_motion, in_motion);
+  time_ = end;
+  ++stats_.windows;
+}
+
+void MovingContacts::note_moving(std::int32_t body) {
+  Body& b = bodies_[std::size_t(body)];
+  if (b.listed_moving) return;
+  b.listed_moving = true;
+  moving_.push_back(body);
+}
+
+// Bodies that may leave their list's ball before `end` make their lists again now.
+void MovingContacts::refresh_lists(double end) {
+  const double half_skin = 0.5 * lists_.skin();
+  for (std::int32_t i : moving_) {
+    const Body& b = bodies_[std::size_t(i)];
+    const Eigen::Vector3d x = b.position_at(time_);
+    const double speed = std::max(b.v.norm(), speed_bound_);
+    if ((x - lists_.anchor(i)).norm() + speed * (end - time_) > half_skin) lists_.refresh(i, x);
+  }
+  stats_.list_refreshes = lists_.refreshes();
+}
+
+// The groups at the window's start: the bodies linked by loaded contacts, and those close
+// enough to meet within the window.
+void MovingContacts::form_groups() {
+  if (loaded_ids_.empty()) return;
+  std::vector<std::int32_t> loaded_bodies;
+  for (std::int32_t id : loaded_ids_) {
+    const MovingContact& c = contacts_[std::size_t(id)];
+    loaded_bodies.push_back(c.first);
+    if (!c.wall()) loaded_bodies.push_back(c.second);
+  }
+  std::sort(loaded_bodies.begin(), loaded_bodies.end());
+  loaded_bodies.erase(std::unique(loaded_bodies.begin(), loaded_bodies.end()), loaded_bodies.end());
+  for (std::size_t i = 0; i < loaded_bodies.size(); ++i)
+    bodies_[std::size_t(loaded_bodies[i])].slot = std::int32_t(i);  // index in loaded_bodies
+  Components components(loaded_bodies.size());
+  for (std::int32_t id : loaded_ids_) {
+    const MovingContact& c = contacts_[std::size_t(id)];
+    if (!c.wall())
+      components.join(bodies_[std::size_t(c.first)].slot, bodies_[std::size_t(c.second)].slot);
+  }
+  const double window = window_;
+  for (std::int32_t i : loaded_bodies) {
+    const Body& a = bodies_[std::size_t(i)];
+    for (std::int32_t k : lists_.bodies_near(i)) {
+      const Body& b = bodies_[std::size_t(k)];
+      if (k < i || b.slot < 0) continue;
+      const double gap = (b.x - a.x).norm() - geometry_.radius(i) - geometry_.radius(k);
+      if (gap < 2.0 * (a.v.norm() + b.v.norm()) * window) components.join(a.slot, b.slot);
+    }
+  }
+  std::vector<std::vector<std::int32_t>> members(loaded_bodies.size()),
+      contacts(loaded_bodies.size());
+  for (std::int32_t i : loaded_bodies)
+    members[std::size_t(components.find(bodies_[std::size_t(i)].slot))].push_back(i);
+  for (std::int32_t id : loaded_ids_)
+    contacts[std::size_t(
+                 components.find(bodies_[std::size_t(contacts_[std::size_t(id)].first)].slot))]
+        .push_back(id);
+  for (std::int32_t i : loaded_bodies) bodies_[std::size_t(i)].slot = -1;
+  for (std::size_t c = 0; c < members.size(); ++c) {
+    if (members[c].empty()) continue;
+    groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
+    groups_.back()->begin(time_, members[c], contacts[c]);
+  }
+}
+
+// Bodies flying freely that meet within the window start a group where they meet, the earliest
+// first; a body takes part in one such meeting (the group watches it for the others).
+void MovingContacts::form_collision_groups(double end) {
+  struct Meeting {
+    double time;
+    std::int32_t first, second;  // second < 0: -1 - wall
+  };
+  std::vector<Meeting> meetings;
+  const double horizon = end - time_;
+  const double resolution = options_.overlap_resolution;
+  for (std::int32_t i : moving_) {
+    const Body& a = bodies_[std::size_t(i)];
+    if (a.owner >= 0) continue;
+    const Eigen::Vector3d x = a.position_at(time_);
+    for (std::int32_t k : lists_.bodies_near(i)) {
+      const Body& b = bodies_[std::size_t(k)];
+      if (b.owner >= 0 || (k < i && b.listed_moving)) continue;
+      const double t =
+          meeting_time(b.position_at(time_) - x, b.v - a.v,
+                       geometry_.radius(i) + geometry_.radius(k) - resolution, horizon);
+      if (std::isfinite(t)) meetings.push_back({time_ + t, i, k});
+    }
+    for (std::int32_t w : lists_.walls_near(i)) {
+      const Plane& wall = geometry_.walls[std::size_t(w)];
+      const double closing = -wall.normal.dot(a.v);
+      if (closing <= 0.0) continue;
+      const double gap = wall.normal.dot(x - wall.point) - geometry_.radius(i) + resolution;
+      const double t = std::max(0.0, gap / closing);
+      if (t <= horizon) meetings.push_back({time_ + t, i, -1 - w});
+    }
+  }
+  std::sort(meetings.begin(), meetings.end(),
+            [](const Meeting& p, const Meeting& q) { return p.time < q.time; });
+  for (const Meeting& m : meetings) {
+    if (bodies_[std::size_t(m.first)].owner >= 0) continue;
+    if (m.second >= 0 && bodies_[std::size_t(m.second)].owner >= 0) continue;
+    groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
+    groups_.back()->begin_collision(m.time, m.first, m.second);
+    note_moving(m.first);
+    if (m.second >= 0) note_moving(m.second);
+  }
+}
+
+// Groups whose bodies overlap at the window's end met during it: each set that met is
+// integrated again from the earliest start as one group. True when some did.
+bool MovingContacts::merge_groups_that_met() {
+  Components met(groups_.size());
+  bool any = false;
+  const double resolution = options_.overlap_resolution;
+  for (const auto& group : groups_) {
+    if (!group) continue;
+    const auto& members = group->members();
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      const std::int32_t i = members[m];
+      const Eigen::Vector3d x = group->final_position(std::int32_t(m));
+      for (std::int32_t k : lists_.bodies_near(i)) {
+        const Body& b = bodies_[std::size_t(k)];
+        if (b.owner < 0 || b.owner == group->id()) continue;
+        const double gap = (groups_[std::size_t(b.owner)]->final_position(b.slot) - x).norm() -
+                           geometry_.radius(i) - geometry_.radius(k);
+        if (gap < -resolution) {
+          met.join(group->id(), b.owner);
+          any = true;
+        }
+      }
+    }
+  }
+  if (!any) return false;
+  std::vector<std::vector<std::int32_t>> sets(groups_.size());
+  for (const auto& group : groups_)
+    if (group) sets[std::size_t(met.find(group->id()))].push_back(group->id());
+  for (const auto& set : sets) {
+    if (set.size() < 2) continue;
+    double start = INFINITY;
+    std::vector<std::int32_t> members;
+    for (std::int32_t g : set) {
+      start = std::min(start, groups_[std::size_t(g)]->start());
+      const auto& mine = groups_[std::size_t(g)]->members();
+      members.insert(members.end(), mine.begin(), mine.end());
+      groups_[std::size_t(g)]->release();
+      groups_[std::size_t(g)].reset();
+    }
+    std::vector<std::int32_t> loaded;
+    for (std::int32_t body : members) bodies_[std::size_t(body)].owner = -2;  // marks the set
+    for (std::int32_t id : loaded_ids_) {
+      const MovingContact& c = contacts_[std::size_t(id)];
+      if (bodies_[std::size_t(c.first)].owner == -2) loaded.push_back(id);
+    }
+    for (std::int32_t body : members) bodies_[std::size_t(body)].owner = -1;
+    stats_.redone_groups += std::int64_t(set.size());
+    groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
+    groups_.back()->begin(start, members, loaded);
+  }
+  return true;
+}
+
+}  // namespace mimpact::granular
