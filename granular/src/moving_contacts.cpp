@@ -246,6 +246,21 @@ void MovingContacts::form_groups() {
     contacts[std::size_t(
                  components.find(bodies_[std::size_t(contacts_[std::size_t(id)].first)].slot))]
         .push_back(id);
+  // the halo: bodies flying freely (at rest, ahead of a front) that a group's body may touch
+  // within the window join it from the start, so that the group does not restart to take them
+  for (std::int32_t i : loaded_bodies) {
+    const Body& a = bodies_[std::size_t(i)];
+    auto& group = members[std::size_t(components.find(a.slot))];
+    for (std::int32_t k : lists_.bodies_near(i)) {
+      Body& b = bodies_[std::size_t(k)];
+      if (b.slot >= 0 || b.owner != -1) continue;  // in a group, or in a halo already
+      const double gap =
+          (b.position_at(time_) - a.x).norm() - geometry_.radius(i) - geometry_.radius(k);
+      if (gap > 2.0 * (a.v.norm() + b.v.norm()) * window + options_.overlap_resolution) continue;
+      b.owner = -2;  // taken by this halo; begin() makes it the group's
+      group.push_back(k);
+    }
+  }
   for (std::int32_t i : loaded_bodies) bodies_[std::size_t(i)].slot = -1;
   for (std::size_t c = 0; c < members.size(); ++c) {
     if (members[c].empty()) continue;

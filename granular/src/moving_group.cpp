@@ -36,15 +36,14 @@ void MovingContacts::Group::add_member(std::int32_t body) {
   members_.push_back(body);
   position_.push_back(b.position_at(time_));
   velocity_.push_back(b.v);
-  partners_.emplace_back();
 }
 
 std::int32_t MovingContacts::Group::find_contact(std::int32_t first_body,
                                                  std::int32_t second_body) {
   if (second_body >= 0 && second_body < first_body) std::swap(first_body, second_body);
   const std::uint64_t key = contact_key(first_body, second_body);
-  const auto found = local_ids_.find(key);
-  if (found != local_ids_.end()) return found->second;
+  const auto [found, added] = local_ids_.emplace(key, std::int32_t(contacts_.size()));
+  if (!added) return found->second;
   Contact c;
   const auto known = world_.contact_ids_.find(key);
   if (known != world_.contact_ids_.end()) {
@@ -60,14 +59,13 @@ std::int32_t MovingContacts::Group::find_contact(std::int32_t first_body,
     c.law = second_body >= 0 ? world_.geometry_.bead_law(first_body, second_body)
                              : world_.geometry_.wall_law(first_body, std::size_t(-1 - second_body));
   }
+  c.elastic = c.law.effective_restitution() >= 1.0;
   c.first_body = first_body;
   c.second_body = second_body;
   const Eigen::VectorXd& radius = world_.geometry_.radius;
   c.reach = radius(first_body) + (second_body >= 0 ? radius(second_body) : 0.0);
-  const std::int32_t index = std::int32_t(contacts_.size());
   contacts_.push_back(c);
-  local_ids_.emplace(key, index);
-  return index;
+  return found->second;
 }
 
 void MovingContacts::Group::begin(double start, const std::vector<std::int32_t>& members,
@@ -93,48 +91,54 @@ void MovingContacts::Group::begin_collision(double start, std::int32_t first, st
   restart(start);
 }
 
-// The integration started again at t from the members' positions and velocities there: slots,
-// the pairs watched, the state y = (displacements, velocities, impulses since t).
+// The integration started again at t from the members' positions and velocities there: the
+// contacts of every pair of members within reach, those in the right-hand side and those
+// searched for events, the bodies flying freely it watches, the state y = (displacements,
+// velocities, impulses since t).
 void MovingContacts::Group::restart(double t) {
   time_ = t;
   const int d = dimension_;
   const std::size_t n = members_.size();
   origin_ = position_;
-  loaded_.clear();
-  for (auto& partners : partners_) partners.clear();
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    Contact& c = contacts_[i];
-    if (!c.loaded) continue;
-    c.first = world_.bodies_[std::size_t(c.first_body)].slot;
-    c.second = c.second_body < 0 ? c.second_body : world_.bodies_[std::size_t(c.second_body)].slot;
-    c.slot = std::int32_t(loaded_.size());
-    loaded_.push_back(std::int32_t(i));
-    partners_[std::size_t(c.first)].push_back(c.second_body);
-    if (c.second >= 0) partners_[std::size_t(c.second)].push_back(c.first_body);
-  }
-  y_.assign(2 * std::size_t(d) * n + loaded_.size(), 0.0);
-  for (std::size_t m = 0; m < n; ++m)
-    for (int k = 0; k < d; ++k) y_[d * (n + m) + std::size_t(k)] = velocity_[m](k);
   watched_.clear();
   for (std::size_t m = 0; m < n; ++m) {
     const std::int32_t body = members_[m];
-    const auto& partners = partners_[m];
-    const auto loaded_with = [&](std::int32_t other) {
-      return std::find(partners.begin(), partners.end(), other) != partners.end();
-    };
     for (std::int32_t other : world_.lists_.bodies_near(body)) {
       const Body& o = world_.bodies_[std::size_t(other)];
-      if (o.owner == id_ ? std::size_t(o.slot) < m : o.owner >= 0) continue;  // once; not theirs
-      if (!loaded_with(other)) watched_.push_back({std::int32_t(m), other});
+      if (o.owner == id_) {
+        if (std::size_t(o.slot) > m) find_contact(body, other);
+      } else if (o.owner < 0) {
+        watched_.push_back({std::int32_t(m), other});
+      }  // another group's: checked at the window's end
     }
-    for (std::int32_t w : world_.lists_.walls_near(body))
-      if (!loaded_with(-1 - w)) watched_.push_back({std::int32_t(m), -1 - w});
+    for (std::int32_t w : world_.lists_.walls_near(body)) find_contact(body, -1 - w);
   }
+  active_.clear();
+  scanned_.clear();
+  elastic_.clear();
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    Contact& c = contacts_[i];
+    c.first = world_.bodies_[std::size_t(c.first_body)].slot;
+    c.second = c.second_body < 0 ? c.second_body : world_.bodies_[std::size_t(c.second_body)].slot;
+    c.slot = -1;
+    if (c.elastic || c.loaded) {
+      c.slot = std::int32_t(active_.size());
+      active_.push_back(std::int32_t(i));
+    }
+    (c.elastic ? elastic_ : scanned_).push_back(std::int32_t(i));
+  }
+  y_.assign(2 * std::size_t(d) * n + active_.size(), 0.0);
+  for (std::size_t m = 0; m < n; ++m)
+    for (int k = 0; k < d; ++k) y_[d * (n + m) + std::size_t(k)] = velocity_[m](k);
   for (Samples* s : {&before_, &after_}) {
-    s->gap.resize(watched_.size() + loaded_.size());
+    s->gap.resize(watched_.size() + scanned_.size());
     s->rate.resize(s->gap.size());
   }
-  probe_ = y_;
+  probe_ = y_peak_ = y_;
+  for (std::int32_t index : elastic_) {
+    double gap;
+    contact_gap(contacts_[std::size_t(index)], y_.data(), gap, contacts_[std::size_t(index)].rate);
+  }
   double first_step = last_step_ > 0.0 ? last_step_ : world_.first_step_;
   for (std::int32_t body : members_)
     if (world_.bodies_[std::size_t(body)].step_hint > 0.0)
@@ -144,17 +148,23 @@ void MovingContacts::Group::restart(double t) {
   fresh_ = true;
 }
 
+void MovingContacts::Group::member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
+                                         Eigen::Vector3d& v) const {
+  const int d = dimension_;
+  x = origin_[slot] + read(y + d * slot, d);
+  v = read(y + d * (members_.size() + slot), d);
+}
+
 void MovingContacts::Group::rhs(const double* y, double* dydt) {
   const int d = dimension_;
-  const std::size_t n = members_.size();
-  const std::size_t velocities = std::size_t(d) * n;
+  const std::size_t velocities = std::size_t(d) * members_.size();
   std::copy(y + velocities, y + 2 * velocities, dydt);
   std::fill(dydt + velocities, dydt + 2 * velocities, 0.0);
-  for (std::int32_t index : loaded_) {
+  for (std::int32_t index : active_) {
     const Contact& c = contacts_[std::size_t(index)];
     const std::size_t a = std::size_t(c.first);
     const Eigen::Vector3d xa = origin_[a] + read(y + d * a, d);
-    const Body& body_a = world_.bodies_[std::size_t(c.first_body)];
+    const double inverse_mass_a = world_.bodies_[std::size_t(c.first_body)].inverse_mass;
     double force;
     if (c.second >= 0) {
       const std::size_t b = std::size_t(c.second);
@@ -163,7 +173,7 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
       force = numerics::hysteresis_force(c.law, c.reach - distance, c.max_compression);
       if (force != 0.0) {
         const Eigen::Vector3d push = (force / distance) * between;
-        add(dydt + velocities + d * a, -body_a.inverse_mass * push, d);
+        add(dydt + velocities + d * a, -inverse_mass_a * push, d);
         add(dydt + velocities + d * b,
             world_.bodies_[std::size_t(c.second_body)].inverse_mass * push, d);
       }
@@ -171,96 +181,89 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
       const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
       force = numerics::hysteresis_force(c.law, c.reach - wall.normal.dot(xa - wall.point),
                                          c.max_compression);
-      if (force != 0.0)
-        add(dydt + velocities + d * a, body_a.inverse_mass * force * wall.normal, d);
+      if (force != 0.0) add(dydt + velocities + d * a, inverse_mass_a * force * wall.normal, d);
     }
     dydt[2 * velocities + std::size_t(c.slot)] = force;
   }
 }
 
+namespace {
+
+// gap (m) and rate (m/s) of a sphere at xa moving at va against one at xb moving at vb, the
+// two touching at distance `reach`
+void sphere_gap(const Eigen::Vector3d& xa, const Eigen::Vector3d& va, const Eigen::Vector3d& xb,
+                const Eigen::Vector3d& vb, double reach, double& gap, double& rate) {
+  const Eigen::Vector3d between = xb - xa;
+  const double distance = between.norm();
+  gap = distance - reach;
+  rate = between.dot(vb - va) / distance;
+}
+
+// the same against a wall
+void wall_gap(const Plane& wall, const Eigen::Vector3d& xa, const Eigen::Vector3d& va, double reach,
+              double& gap, double& rate) {
+  gap = wall.normal.dot(xa - wall.point) - reach;
+  rate = wall.normal.dot(va);
+}
+
+}  // namespace
+
 void MovingContacts::Group::contact_gap(const Contact& c, const double* y, double& gap,
                                         double& rate) const {
-  const int d = dimension_;
-  const std::size_t n = members_.size();
-  const std::size_t a = std::size_t(c.first);
-  const Eigen::Vector3d xa = origin_[a] + read(y + d * a, d);
-  const Eigen::Vector3d va = read(y + d * (n + a), d);
-  if (c.second >= 0) {
-    const std::size_t b = std::size_t(c.second);
-    const Eigen::Vector3d between = origin_[b] + read(y + d * b, d) - xa;
-    const double distance = between.norm();
-    gap = distance - c.reach;
-    rate = between.dot(read(y + d * (n + b), d) - va) / distance;
-  } else {
-    const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
-    gap = wall.normal.dot(xa - wall.point) - c.reach;
-    rate = wall.normal.dot(va);
-  }
+  Eigen::Vector3d xa, va;
+  member_state(std::size_t(c.first), y, xa, va);
+  if (c.second < 0)
+    return wall_gap(world_.geometry_.walls[std::size_t(-1 - c.second)], xa, va, c.reach, gap, rate);
+  Eigen::Vector3d xb, vb;
+  member_state(std::size_t(c.second), y, xb, vb);
+  sphere_gap(xa, va, xb, vb, c.reach, gap, rate);
 }
 
 void MovingContacts::Group::watch_gap(const Watch& w, double t, const double* y, double& gap,
                                       double& rate) const {
-  const int d = dimension_;
-  const std::size_t n = members_.size();
-  const std::size_t a = std::size_t(w.member);
-  const Eigen::Vector3d xa = origin_[a] + read(y + d * a, d);
-  const Eigen::Vector3d va = read(y + d * (n + a), d);
-  const double ra = world_.geometry_.radius(members_[a]);
-  if (w.other < 0) {
-    const Plane& wall = world_.geometry_.walls[std::size_t(-1 - w.other)];
-    gap = wall.normal.dot(xa - wall.point) - ra;
-    rate = wall.normal.dot(va);
-    return;
-  }
+  Eigen::Vector3d xa, va;
+  member_state(std::size_t(w.member), y, xa, va);
   const Body& o = world_.bodies_[std::size_t(w.other)];
-  Eigen::Vector3d xb, vb;
-  if (o.owner == id_) {
-    xb = origin_[std::size_t(o.slot)] + read(y + d * std::size_t(o.slot), d);
-    vb = read(y + d * (n + std::size_t(o.slot)), d);
-  } else {  // flying freely
-    xb = o.position_at(t);
-    vb = o.v;
-  }
-  const Eigen::Vector3d between = xb - xa;
-  const double distance = between.norm();
-  gap = distance - ra - world_.geometry_.radius(w.other);
-  rate = between.dot(vb - va) / distance;
+  sphere_gap(
+      xa, va, o.position_at(t), o.v,
+      world_.geometry_.radius(members_[std::size_t(w.member)]) + world_.geometry_.radius(w.other),
+      gap, rate);
+}
+
+void MovingContacts::Group::entry_gap(std::size_t entry, double t, const double* y, double& gap,
+                                      double& rate) const {
+  if (entry < watched_.size()) return watch_gap(watched_[entry], t, y, gap, rate);
+  contact_gap(contacts_[std::size_t(scanned_[entry - watched_.size()])], y, gap, rate);
 }
 
 void MovingContacts::Group::measure(double t, Samples& samples) {
   dense_->state_at(t, probe_);
-  for (std::size_t i = 0; i < watched_.size(); ++i)
-    watch_gap(watched_[i], t, probe_.data(), samples.gap[i], samples.rate[i]);
-  for (std::size_t i = 0; i < loaded_.size(); ++i)
-    contact_gap(contacts_[std::size_t(loaded_[i])], probe_.data(), samples.gap[watched_.size() + i],
-                samples.rate[watched_.size() + i]);
+  for (std::size_t entry = 0; entry < samples.gap.size(); ++entry)
+    entry_gap(entry, t, probe_.data(), samples.gap[entry], samples.rate[entry]);
 }
 
-// The earliest event of a watched pair or loaded contact in [a, b] of the current step, as the
-// compliant integrator finds its own (plugins::internal::classify, TOMS 748).
+// The earliest event of the scanned entries in [a, b] of the current step: a watched body
+// touched, an inelastic contact joining, leaving or turning (plugins::internal::classify, as
+// the compliant integrator), or an elastic contact's compression ending (its peak force);
+// located by TOMS 748.
 bool MovingContacts::Group::next_event(double a, double b, Event& event) {
   const numerics::OdeOptions& ode = world_.options_.ode;
   const plugins::internal::Overlaps overlaps{.join = world_.options_.overlap_resolution,
                                              .leave = 0.5 * world_.options_.overlap_resolution};
   one_.gap.resize(1);
   one_.rate.resize(1);
-  auto value_at = [&](std::size_t entry, double t) {
-    dense_->state_at(t, probe_);
-    if (entry < watched_.size())
-      watch_gap(watched_[entry], t, probe_.data(), one_.gap[0], one_.rate[0]);
-    else
-      contact_gap(contacts_[std::size_t(loaded_[entry - watched_.size()])], probe_.data(),
-                  one_.gap[0], one_.rate[0]);
-  };
   auto locate = [&](double t0, double t1, const Samples& s0, const Samples& s1,
                     std::vector<numerics::internal::Crossing>& found) {
     for (std::size_t entry = 0; entry < s0.gap.size(); ++entry) {
-      const plugins::internal::ContactWatch watch{.joined = entry >= watched_.size(),
-                                                  .gap_before = s0.gap[entry],
-                                                  .gap_after = s1.gap[entry],
-                                                  .rate_before = s0.rate[entry],
-                                                  .rate_after = s1.rate[entry]};
-      const plugins::internal::Classified crossed = plugins::internal::classify(watch, overlaps);
+      const bool watch = entry < watched_.size();
+      const Contact* c =
+          watch ? nullptr : &contacts_[std::size_t(scanned_[entry - watched_.size()])];
+      const plugins::internal::ContactWatch w{.joined = c && c->loaded,
+                                              .gap_before = s0.gap[entry],
+                                              .gap_after = s1.gap[entry],
+                                              .rate_before = s0.rate[entry],
+                                              .rate_after = s1.rate[entry]};
+      const plugins::internal::Classified crossed = plugins::internal::classify(w, overlaps);
       if (crossed.kind == ContactEvent::none) continue;
       if (crossed.at_start) {
         if (entry != last_event_ || t0 > a) found.push_back({long(entry), int(crossed.kind), t0});
@@ -271,11 +274,12 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
       };
       const numerics::Bracket bracket = numerics::narrow_crossing(
           [&](double t) {
-            value_at(entry, t);
+            dense_->state_at(t, probe_);
+            entry_gap(entry, t, probe_.data(), one_.gap[0], one_.rate[0]);
             return value(one_.gap[0], one_.rate[0]);
           },
-          t0, t1, value(watch.gap_before, watch.rate_before),
-          value(watch.gap_after, watch.rate_after), ode.event_tolerance);
+          t0, t1, value(s0.gap[entry], s0.rate[entry]), value(s1.gap[entry], s1.rate[entry]),
+          ode.event_tolerance);
       if (entry == last_event_ && bracket.upper <= a + ode.event_tolerance) continue;
       found.push_back({long(entry), int(crossed.kind), bracket.upper});
     }
@@ -286,26 +290,31 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
   if (found.empty()) return false;
   const auto earliest = std::min_element(
       found.begin(), found.end(), [](const auto& p, const auto& q) { return p.time < q.time; });
-  event = {std::size_t(earliest->index), ContactEvent(earliest->kind), earliest->time};
+  const std::size_t entry = std::size_t(earliest->index);
+  const ContactEvent kind = ContactEvent(earliest->kind);
+  Action action = Action::take;
+  if (entry >= watched_.size())
+    action = kind == ContactEvent::joining   ? Action::join
+             : kind == ContactEvent::leaving ? Action::leave
+                                             : Action::turn;
+  event = {entry, action, earliest->time};
   return true;
 }
 
-// The members and loaded contacts at time t of the current step (their impulses folded in).
+// The members and active contacts at time t of the current step (their impulses folded in).
 void MovingContacts::Group::move_to(double t) {
   const int d = dimension_;
   const std::size_t n = members_.size();
   dense_->state_at(t, y_);
-  for (std::size_t m = 0; m < n; ++m) {
-    position_[m] = origin_[m] + read(&y_[d * m], d);
-    velocity_[m] = read(&y_[d * (n + m)], d);
-  }
-  for (std::int32_t index : loaded_) {
+  for (std::size_t m = 0; m < n; ++m) member_state(m, y_.data(), position_[m], velocity_[m]);
+  for (std::int32_t index : active_) {
     Contact& c = contacts_[std::size_t(index)];
     c.impulse += y_[2 * std::size_t(d) * n + std::size_t(c.slot)];
     double gap, rate;
     contact_gap(c, y_.data(), gap, rate);
     c.compression = -gap;
     c.force = numerics::hysteresis_force(c.law, -gap, c.max_compression);
+    if (c.elastic) c.loaded = c.compression > 0.5 * world_.options_.overlap_resolution;
     if (c.force > c.max_force) {
       c.max_force = c.force;
       c.time_of_max_force = t;
@@ -314,28 +323,53 @@ void MovingContacts::Group::move_to(double t) {
   time_ = t;
 }
 
-void MovingContacts::Group::handle(const Event& event) {
-  move_to(event.time);
-  last_event_ = event.entry;
-  if (event.entry < watched_.size()) {  // joining: a new member, perhaps, and a loaded contact
-    const Watch w = watched_[event.entry];
-    if (w.other >= 0 && world_.bodies_[std::size_t(w.other)].owner != id_) {
-      if (world_.bodies_[std::size_t(w.other)].owner >= 0)
-        throw Error("moving contacts: a group took a body of another (internal error)");
-      add_member(w.other);
+void MovingContacts::Group::track_peaks(double t0, double t1) {
+  if (elastic_.empty() || t1 <= t0) return;
+  dense_->state_at(t1, probe_);
+  double gap;
+  for (std::int32_t index : elastic_) {
+    Contact& c = contacts_[std::size_t(index)];
+    const double rate_before = c.rate;
+    contact_gap(c, probe_.data(), gap, c.rate);
+    double peak = -gap, when = t1;
+    if (rate_before < 0.0 && c.rate >= 0.0 && gap < 0.0) {
+      const numerics::Bracket bracket = numerics::narrow_crossing(
+          [&](double t) {
+            dense_->state_at(t, y_peak_);
+            double g, r;
+            contact_gap(c, y_peak_.data(), g, r);
+            return -r;
+          },
+          t0, t1, -rate_before, -c.rate, world_.options_.ode.event_tolerance);
+      dense_->state_at(bracket.upper, y_peak_);
+      double r;
+      contact_gap(c, y_peak_.data(), gap, r);
+      peak = -gap;
+      when = bracket.upper;
     }
-    Contact& c = contacts_[std::size_t(find_contact(members_[std::size_t(w.member)], w.other))];
-    c.loaded = true;
-    c.max_compression = 0.0;
-    // the entry of the new contact, which the restart puts last among the loaded
-    last_event_ = std::size_t(-1);
+    const double force = numerics::hysteresis_force(c.law, peak, c.max_compression);
+    if (force > c.max_force) {
+      c.max_force = force;
+      c.time_of_max_force = when;
+    }
+  }
+}
+
+void MovingContacts::Group::handle(const Event& event) {
+  last_event_ = event.entry;
+  move_to(event.time);
+  if (event.action == Action::take) {
+    add_member(watched_[event.entry].other);
+    last_event_ = std::size_t(-1);  // its contact is a new entry
   } else {
-    Contact& c = contacts_[std::size_t(loaded_[event.entry - watched_.size()])];
-    if (event.kind == ContactEvent::leaving) {
+    Contact& c = contacts_[std::size_t(scanned_[event.entry - watched_.size()])];
+    if (event.action == Action::join) {
+      c.loaded = true;
+      c.max_compression = 0.0;
+    } else if (event.action == Action::leave) {
       c.loaded = false;
       c.max_compression = 0.0;  // a contact that opens forgets its history
       c.force = 0.0;
-      last_event_ = std::size_t(-1);
     } else if (c.compression > c.max_compression) {  // turning, from its loading curve
       const double e = c.law.restitution;
       c.dissipated += (1.0 - e * e) * numerics::hysteresis_energy(c.law, c.compression, 0.0);
@@ -352,6 +386,7 @@ void MovingContacts::Group::take_step() {
                       numerics::internal::DenseOutput::State& dydt,
                       double) { rhs(y.data(), dydt.data()); });
   last_step_ = dense_->last_step();
+  world_.stats_.member_steps += std::int64_t(members_.size());
   if (++world_.stats_.steps > world_.options_.max_steps)
     throw Error("moving contacts: max_steps = " + std::to_string(world_.options_.max_steps) +
                 " time steps taken by t = " + to_text(dense_->time()) +
@@ -373,7 +408,9 @@ void MovingContacts::Group::integrate(double end) {
     }
     const double segment_end = std::min(dense_->time(), end);
     Event event;
-    if (next_event(time_, segment_end, event)) {
+    const bool found = next_event(time_, segment_end, event);
+    track_peaks(time_, found ? event.time : segment_end);
+    if (found) {
       handle(event);
       continue;
     }
@@ -397,6 +434,7 @@ void MovingContacts::Group::commit() {
     b.step_hint = last_step_;
   }
   for (const Contact& c : contacts_) {
+    if (c.world_id < 0 && c.impulse == 0.0 && !c.loaded) continue;  // never touched
     const std::int32_t id =
         c.world_id >= 0 ? c.world_id : world_.contact_id(c.first_body, c.second_body);
     MovingContact& record = world_.contacts_[std::size_t(id)];

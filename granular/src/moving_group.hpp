@@ -57,38 +57,45 @@ class MovingContacts::Group {
   double start() const { return start_; }
   // the bodies it owns: those it started with, then those it took as they touched it
   const std::vector<std::int32_t>& members() const { return members_; }
-  std::size_t loaded_contacts() const { return loaded_.size(); }
   // position (m) of member slot `m` at the end of its integration
   Eigen::Vector3d final_position(std::int32_t slot) const;
 
  private:
-  // A contact as the group sees it: its members' slots (second < 0: -1 - wall), its law and
-  // history, and its record's id in the world (-1: first met in this window).
+  // A contact of two members, or of a member and a wall: its slots (second < 0: -1 - wall), its
+  // law and history, and its record's id in the world (-1: not recorded yet). An elastic
+  // contact (e = 1) is a smooth force of the positions, K max(delta, 0)^eta, always in the
+  // right-hand side: it closes and opens without an event. An inelastic one follows the
+  // bi-stiffness curves from its largest overlap, which the events keep: it joins, turns and
+  // leaves at located events, each a restart.
   struct Contact {
     std::int32_t world_id = -1;
     std::int32_t first_body = 0, second_body = 0;  // world bodies (second < 0: -1 - wall)
     std::int32_t first = 0, second = 0;            // member slots (second < 0: -1 - wall)
     numerics::ContactLaw law;
     double reach = 0.0;  // m: the sum of the radii, or the bead's radius against a wall
-    bool loaded = false;
+    bool elastic = true;
+    bool loaded = false;  // inelastic: joined; elastic: overlapping at the last move
     double max_compression = 0.0;
     double compression = 0.0, force = 0.0;  // m, N: at the last move
     double impulse = 0.0;                   // N s, until the last restart
     double max_force = 0.0, time_of_max_force = 0.0, dissipated = 0.0;
-    std::int32_t slot = -1;  // of its impulse in the state
+    std::int32_t slot = -1;  // of its impulse in the state, while in the right-hand side
+    double rate = 0.0;       // elastic: m/s, at the end of the last segment tracked
   };
-  // A pair that may close: a member and another member, a body flying freely, or a wall.
+  // A member and a body flying freely, which it takes when they touch.
   struct Watch {
-    std::int32_t member = 0;
-    std::int32_t other = 0;  // world body, or -1 - wall
+    std::int32_t member = 0;  // slot
+    std::int32_t other = 0;   // world body
   };
-  // Gaps (m) and rates (m/s) of the watched pairs and loaded contacts at one time.
+  // Gaps (m) and rates (m/s) of the scanned entries at one time.
   struct Samples {
     std::vector<double> gap, rate;
   };
+  // what an event does: take a body, or change an inelastic contact (a restart each)
+  enum class Action { take, join, leave, turn };
   struct Event {
-    std::size_t entry = 0;  // watched pairs, then loaded contacts
-    plugins::internal::ContactEvent kind = plugins::internal::ContactEvent::none;
+    std::size_t entry = 0;  // of the scan: watched_, then contacts_ by scanned_
+    Action action = Action::take;
     double time = 0.0;
   };
 
@@ -97,13 +104,20 @@ class MovingContacts::Group {
   std::int32_t find_contact(std::int32_t first_body, std::int32_t second_body);
   void restart(double t);
   void rhs(const double* y, double* dydt);
-  // gap and rate of a loaded contact, or of a watched pair, at time t along the state y
+  // a member's position (m) and velocity (m/s) along the state y
+  void member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
+                    Eigen::Vector3d& v) const;
+  // gap and rate of contact c, or of watched pair w at time t, along the state y
   void contact_gap(const Contact& c, const double* y, double& gap, double& rate) const;
   void watch_gap(const Watch& w, double t, const double* y, double& gap, double& rate) const;
+  void entry_gap(std::size_t entry, double t, const double* y, double& gap, double& rate) const;
   void measure(double t, Samples& samples);
   bool next_event(double a, double b, Event& event);
   void move_to(double t);
   void handle(const Event& event);
+  // the elastic contacts' largest forces over [t0, t1] of the current step: at t1, or where
+  // their compression ends (located, without a restart: the force is smooth there)
+  void track_peaks(double t0, double t1);
   void take_step();
 
   MovingContacts& world_;
@@ -113,14 +127,14 @@ class MovingContacts::Group {
   std::vector<std::int32_t> members_;
   std::vector<Eigen::Vector3d> position_, velocity_;  // members', at time_ (after move_to)
   std::vector<Eigen::Vector3d> origin_;               // members' positions at the last restart
-  // per member: the bodies (and -1 - wall) it has loaded contacts with
-  std::vector<std::vector<std::int32_t>> partners_;
+  std::vector<Contact> contacts_;  // its members' contacts: every pair within reach
   std::unordered_map<std::uint64_t, std::int32_t> local_ids_;  // contact_key -> contacts_
-  std::vector<Contact> contacts_;     // every contact it touched in this window
-  std::vector<std::int32_t> loaded_;  // of contacts_: those carrying force
+  std::vector<std::int32_t> active_;   // of contacts_: those in the right-hand side
+  std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
+  std::vector<std::int32_t> elastic_;  // of contacts_: the elastic, whose peaks are tracked
   std::vector<Watch> watched_;
   std::unique_ptr<numerics::internal::DenseOutput> dense_;
-  std::vector<double> y_, probe_;
+  std::vector<double> y_, probe_, y_peak_;
   Samples before_, after_, one_;
   double last_step_ = 0.0;
   bool fresh_ = true;  // restarted, no step taken since

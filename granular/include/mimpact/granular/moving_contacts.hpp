@@ -60,6 +60,7 @@ struct MovingContact {
 
 struct MovingContactsStats {
   std::int64_t steps = 0;           // time steps of all groups
+  std::int64_t member_steps = 0;    // the bodies those steps carried
   std::int64_t windows = 0;         // synchronisation windows
   std::int64_t redone_groups = 0;   // groups integrated again over a window (they met another)
   std::int64_t group_restarts = 0;  // restarts of a group's integration at its own events
@@ -76,9 +77,10 @@ struct MovingContactsStats {
 // The cost follows what moves. A body that carries no force flies in closed form and costs
 // nothing. The others are split into groups, the bodies linked by loaded contacts (and those
 // close enough to meet them within a window): each group is integrated on its own by
-// Dormand-Prince 5(4), with its own steps, and restarts only at its own events (a contact
-// joining, leaving, or turning to unload), located with dense output (TOMS 748). Groups meet
-// only at the ends of short windows (a quarter of the quickest contact's duration): a window
+// Dormand-Prince 5(4), with its own steps. Elastic contacts are smooth forces of the positions
+// and need no event; a group restarts only at its own events (a body it takes, an inelastic
+// contact joining, leaving, or turning to unload), located with dense output (TOMS 748). Groups
+// meet only at the ends of short windows (a quarter of the quickest contact's duration): a window
 // in which two groups touched, or took the same body, is integrated again for them as one.
 class MovingContacts {
  public:
