@@ -27,7 +27,9 @@ std::map<std::string, std::string> output_files(const nlohmann::ordered_json& su
     files["velocities.csv"] = run.series.velocities_csv();
   if (!run.frames.empty()) {
     files["frame_forces.csv"] = packings::frame_forces_csv(run.frames);
-    files["frame_velocities.csv"] = packings::frame_velocities_csv(run.frames);
+    files["frame_velocities.csv"] = packings::frame_velocities_csv(run.frames, model.dimension);
+    if (!run.frames.position.empty())
+      files["frame_positions.csv"] = packings::frame_positions_csv(run.frames, model.dimension);
   }
   return files;
 }

@@ -35,13 +35,20 @@ std::string TimeSeries::forces_csv() const {
   return csv(time, force, labels);
 }
 
-std::string TimeSeries::velocities_csv() const {
-  static const char* const kPlanar[] = {"vx_", "vy_"};
+std::string vector_csv(const std::vector<double>& time,
+                       const std::vector<std::vector<double>>& rows, const std::vector<int>& bodies,
+                       int dimension, const std::string& symbol) {
+  static const char* const kAxes[] = {"x", "y", "z"};
   std::vector<std::string> labels;
   for (int body : bodies)
     for (int k = 0; k < dimension; ++k)
-      labels.push_back((dimension == 2 ? kPlanar[k] : "v_") + std::to_string(body));
-  return csv(time, velocity, labels);
+      labels.push_back((dimension == 1 ? (symbol.empty() ? "x" : symbol) : symbol + kAxes[k]) +
+                       "_" + std::to_string(body));
+  return csv(time, rows, labels);
+}
+
+std::string TimeSeries::velocities_csv() const {
+  return vector_csv(time, velocity, bodies, dimension, "v");
 }
 
 namespace {

@@ -37,10 +37,14 @@ struct Body {
   Vector velocity = Vector::Zero(centre.size());
 };
 
-Vector planar(double x, double y) {
-  Vector v(2);
-  v << x, y;
+// the first `dimension` of these components
+Vector vector_of(std::initializer_list<double> components, int dimension) {
+  Vector v(dimension);
+  std::copy_n(components.begin(), dimension, v.data());
   return v;
+}
+Vector vector_of(const std::vector<double>& components) {
+  return Eigen::Map<const Eigen::VectorXd>(components.data(), Eigen::Index(components.size()));
 }
 
 // the R-tree's point of `centre`, shifted by `by` along every axis
@@ -53,26 +57,48 @@ Point point_of(const Vector& centre, double by = 0.0) {
 std::string bead_name(const PackingModel& model, Eigen::Index body) {
   if (body >= model.bead_count) return "striker " + std::to_string(body - model.bead_count);
   if (model.columns == 0) return "bead " + std::to_string(body);
-  return "bead " + std::to_string(body) + " (row " + std::to_string(body / model.columns) +
-         ", column " + std::to_string(body % model.columns) + ")";
+  const Eigen::Index row = body / model.columns;
+  const std::string layer =
+      model.layers > 0 ? "layer " + std::to_string(row / model.rows) + ", " : std::string();
+  return "bead " + std::to_string(body) + " (" + layer + "row " +
+         std::to_string(model.layers > 0 ? row % model.rows : row) + ", column " +
+         std::to_string(body % model.columns) + ")";
 }
 
 std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
   std::vector<Body> beads;
   const double a = lattice.radius;
-  const bool hexagonal = lattice.type == LatticeType::hexagonal;
-  const double row_pitch = hexagonal ? std::sqrt(3.0) * a : 2.0 * a;
-  beads.reserve(std::size_t(lattice.rows) * std::size_t(lattice.columns));
-  for (int r = 0; r < lattice.rows; ++r)
-    for (int c = 0; c < lattice.columns; ++c) {
-      const double shift = hexagonal && r % 2 == 1 ? a : 0.0;
-      beads.push_back({planar(2.0 * a * c + shift, row_pitch * r), a, lattice.material});
-    }
+  const int d = lattice_dimension(lattice.type);
+  const bool close_packed =
+      lattice.type != LatticeType::square && lattice.type != LatticeType::simple_cubic;
+  const double row_pitch = close_packed ? std::sqrt(3.0) * a : 2.0 * a;
+  const double layer_pitch = close_packed ? 2.0 * std::sqrt(2.0 / 3.0) * a : 2.0 * a;
+  // the layers' stacking: FCC shifts each layer by (a, a / sqrt(3)) from the one below, three
+  // positions in turn; HCP alternates two
+  const int positions = lattice.type == LatticeType::fcc   ? 3
+                        : lattice.type == LatticeType::hcp ? 2
+                                                           : 1;
+  const int layers = std::max(lattice.layers, 1);
+  beads.reserve(std::size_t(layers) * std::size_t(lattice.rows) * std::size_t(lattice.columns));
+  for (int l = 0; l < layers; ++l) {
+    const double stacking = double(l % positions);
+    for (int r = 0; r < lattice.rows; ++r)
+      for (int c = 0; c < lattice.columns; ++c) {
+        const double shift = close_packed && r % 2 == 1 ? a : 0.0;
+        beads.push_back({vector_of({2.0 * a * c + shift + stacking * a,
+                                    row_pitch * r + stacking * a / std::sqrt(3.0), layer_pitch * l},
+                                   d),
+                         a, lattice.material});
+      }
+  }
   return beads;
 }
 
-// The memory a bead takes with its contacts (a bead touches 3 others on average in the plane)
-double bead_bytes() { return granular::model_bytes(1.0, 3.0, 2); }
+// The memory a bead takes with its contacts (a bead touches 3 others on average in the plane, 6
+// in space)
+double bead_bytes(int dimension) {
+  return granular::model_bytes(1.0, 3.0 * (dimension - 1), dimension);
+}
 
 // The bead list's file: inside `directory` (the scene's, or --data-dir), a regular file. Its
 // path is the scene's, so messages may name it; its content is never echoed.
@@ -95,6 +121,13 @@ std::filesystem::path bead_file(const BeadListSpec& list, const std::filesystem:
   return path;
 }
 
+// "x,y,radius": the header of these columns
+std::string line_of(const char* const* names, int columns) {
+  std::string line = names[0];
+  for (int k = 1; k < columns; ++k) (line += ",") += names[k];
+  return line;
+}
+
 // A cell of the list as a number: the whole cell, spaces aside, and finite.
 std::optional<double> number_of(std::string cell) {
   const std::size_t first = cell.find_first_not_of(" \t\r");
@@ -107,8 +140,9 @@ std::optional<double> number_of(std::string cell) {
   return value;
 }
 
-// "x,y,radius" then one bead per line. Messages name the line and column, never their content
-// (a scene from elsewhere must not make mimpact show a file's lines).
+// "x,y,radius" (the plane) or "x,y,z,radius" (space), then one bead per line. Messages name the
+// line and column, never their content (a scene from elsewhere must not make mimpact show a
+// file's lines).
 std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory,
                                const granular::RunLimits& limits) {
   const std::filesystem::path path = bead_file(list, directory);
@@ -117,32 +151,40 @@ std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::
   auto fail = [&](std::size_t line, const std::string& what) -> void {
     throw InvalidInput(path.string() + " line " + std::to_string(line) + ": " + what);
   };
-  static const char* const kColumns[] = {"x", "y", "radius"};
   std::string line;
   std::getline(in, line);
   if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
   if (line.find_last_not_of(" \t\r") != std::string::npos)
     line.erase(line.find_last_not_of(" \t\r") + 1);
-  if (line != "x,y,radius") fail(1, "is not the header; allowed: x,y,radius (m)");
+  if (line != "x,y,radius" && line != "x,y,z,radius")
+    fail(1, "is not the header; allowed: x,y,radius or x,y,z,radius (m)");
+  const int dimension = line == "x,y,radius" ? 2 : 3;
+  const int columns = dimension + 1;
+  static const char* const kNames[2][4] = {{"x", "y", "radius"}, {"x", "y", "z", "radius"}};
+  const char* const* names = kNames[dimension - 2];
   std::vector<Body> beads;
   for (std::size_t number = 2; std::getline(in, line); ++number) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     std::istringstream fields(line);
     std::string cell;
-    double values[3];
+    double values[4];
     int count = 0;
     for (; std::getline(fields, cell, ','); ++count) {
-      if (count == 3) fail(number, "more than 3 columns; allowed: x,y,radius");
+      if (count == columns)
+        fail(number, "more than " + std::to_string(columns) +
+                         " columns; allowed: " + line_of(names, columns));
       const std::optional<double> value = number_of(cell);
-      if (!value)
-        fail(number, std::string("column ") + kColumns[count] + " is not a finite number");
+      if (!value) fail(number, std::string("column ") + names[count] + " is not a finite number");
       values[count] = *value;
     }
-    if (count != 3) fail(number, std::to_string(count) + " columns; allowed: x,y,radius");
-    if (!(values[2] > 0.0)) fail(number, invalid_value_message("radius", values[2], "> 0 (m)"));
-    beads.push_back({planar(values[0], values[1]), values[2], list.material});
+    if (count != columns)
+      fail(number, std::to_string(count) + " columns; allowed: " + line_of(names, columns));
+    const double radius = values[dimension];
+    if (!(radius > 0.0)) fail(number, invalid_value_message("radius", radius, "> 0 (m)"));
+    beads.push_back(
+        {vector_of({values[0], values[1], values[2]}, dimension), radius, list.material});
     if (beads.size() % 100'000 == 0)
-      granular::check_memory(double(beads.size()) * bead_bytes(),
+      granular::check_memory(double(beads.size()) * bead_bytes(dimension),
                              "beads.file (" + std::to_string(beads.size()) + " beads so far)",
                              limits);
   }
@@ -172,16 +214,23 @@ class PackingBuilder {
       : scene_(scene), model_(model), limits_(limits) {}
 
   void build() {
-    if (scene_.lattice)
-      granular::check_memory(
-          double(scene_.lattice->rows) * double(scene_.lattice->columns) * bead_bytes(),
-          "lattice (" + std::to_string(scene_.lattice->rows) + " x " +
-              std::to_string(scene_.lattice->columns) + " beads)",
-          limits_);
+    if (scene_.lattice) {
+      const LatticeSpec& lattice = *scene_.lattice;
+      const int layers = std::max(lattice.layers, 1);
+      granular::check_memory(double(layers) * double(lattice.rows) * double(lattice.columns) *
+                                 bead_bytes(lattice_dimension(lattice.type)),
+                             "lattice (" + std::to_string(layers) + " x " +
+                                 std::to_string(lattice.rows) + " x " +
+                                 std::to_string(lattice.columns) + " beads)",
+                             limits_);
+    }
     bodies_ = scene_.lattice ? lattice_beads(*scene_.lattice)
                              : listed_beads(*scene_.beads, scene_.directory, limits_);
+    model_.dimension = int(bodies_.front().centre.size());
+    check_dimension(scene_, model_.dimension);
     model_.bead_count = Eigen::Index(bodies_.size());
     if (scene_.lattice) {
+      model_.layers = scene_.lattice->layers;
       model_.rows = scene_.lattice->rows;
       model_.columns = scene_.lattice->columns;
     }
@@ -244,12 +293,14 @@ class PackingBuilder {
   // the line of a wall given by its side: touching the outermost beads
   void wall_line(const WallSpec& wall, Vector& point, Vector& normal) const {
     if (!wall.side) {
-      point = planar(wall.point[0], wall.point[1]);
-      normal = planar(wall.normal[0], wall.normal[1]).normalized();
+      point = vector_of(wall.point);
+      normal = vector_of(wall.normal).normalized();
       return;
     }
-    static const double kNormals[][2] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}};
-    normal = planar(kNormals[int(*wall.side)][0], kNormals[int(*wall.side)][1]);
+    static const double kNormals[][3] = {{0, 1, 0},  {0, -1, 0}, {1, 0, 0},
+                                         {-1, 0, 0}, {0, 0, 1},  {0, 0, -1}};
+    const double* n = kNormals[int(*wall.side)];
+    normal = vector_of({n[0], n[1], n[2]}, model_.dimension);
     // the plane lies where the beads reach furthest against the normal
     double reach = INFINITY;
     for (Eigen::Index i = 0; i < model_.bead_count; ++i)
@@ -291,7 +342,7 @@ class PackingBuilder {
         throw InvalidInput(invalid_value_message(
             name + ".target[0]", spec.target[0],
             "a bead in [0, " + std::to_string(model_.bead_count) + "): aimed at nothing"));
-      const Vector velocity = planar(spec.velocity[0], spec.velocity[1]);
+      const Vector velocity = vector_of(spec.velocity);
       const Vector direction = velocity.normalized();
       const Body& aimed = bodies_[std::size_t(target)];
       const Vector arrival = aimed.centre - (aimed.radius + spec.radius) * direction;
@@ -432,8 +483,9 @@ PackingModel build_packing_model(const PackingScene& scene, const granular::RunL
 }
 
 Eigen::Index body_of_target(const PackingModel& model, const std::vector<int>& target) {
-  if (model.columns > 0) return Eigen::Index(target[0]) * model.columns + target[1];
-  return target[0];
+  if (model.columns == 0) return target[0];
+  if (model.layers == 0) return Eigen::Index(target[0]) * model.columns + target[1];
+  return (Eigen::Index(target[0]) * model.rows + target[1]) * model.columns + target[2];
 }
 
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const PackingModel& model) {

@@ -91,14 +91,14 @@ Eigen::Index contacts_reached(const granular::ImpactOutcome& impact) {
   return Eigen::Index((impact.result.max_force.array() > 0.0).count());
 }
 
-granular::TimeSeries frame_table(const granular::Frames& frames, bool forces) {
+granular::TimeSeries frame_table(const granular::Frames& frames, bool forces, int dimension) {
   granular::TimeSeries table;
   table.time = frames.time;
-  table.dimension = 2;
+  table.dimension = dimension;
   const std::vector<std::vector<double>>& rows = forces ? frames.force : frames.velocity;
   const std::size_t columns = rows.empty() ? 0 : rows.front().size();
   std::vector<int>& labels = forces ? table.contacts : table.bodies;
-  labels.resize(forces ? columns : columns / 2);
+  labels.resize(forces ? columns : columns / std::size_t(dimension));
   std::iota(labels.begin(), labels.end(), 0);
   (forces ? table.force : table.velocity) = rows;
   return table;
@@ -247,11 +247,18 @@ std::string contacts_csv(const PackingModel& model) {
 }
 
 std::string frame_forces_csv(const granular::Frames& frames) {
-  return frame_table(frames, true).forces_csv();
+  return frame_table(frames, true, 1).forces_csv();
 }
 
-std::string frame_velocities_csv(const granular::Frames& frames) {
-  return frame_table(frames, false).velocities_csv();
+std::string frame_velocities_csv(const granular::Frames& frames, int dimension) {
+  return frame_table(frames, false, dimension).velocities_csv();
+}
+
+std::string frame_positions_csv(const granular::Frames& frames, int dimension) {
+  const std::size_t columns = frames.position.empty() ? 0 : frames.position.front().size();
+  std::vector<int> bodies(columns / std::size_t(dimension));
+  std::iota(bodies.begin(), bodies.end(), 0);
+  return granular::vector_csv(frames.time, frames.position, bodies, dimension, "");
 }
 
 }  // namespace mimpact::packings

@@ -12,14 +12,35 @@ namespace {
 using granular::SceneChecks;
 using nlohmann::json;
 
-// A pair [x, y] of finite numbers, or InvalidInput naming the field.
-void check_pair(const std::vector<double>& value, const std::string& field, const char* what,
-                const SceneChecks& checks) {
-  if (value.size() != 2)
+// A vector of 2 or 3 finite numbers, or InvalidInput naming the field.
+void check_vector(const std::vector<double>& value, const std::string& field, const char* what,
+                  const SceneChecks& checks) {
+  if (value.size() != 2 && value.size() != 3)
     checks.fail(field + " has " + std::to_string(value.size()) + " entries; allowed: " + what);
-  for (std::size_t k = 0; k < 2; ++k)
+  for (std::size_t k = 0; k < value.size(); ++k)
     if (!std::isfinite(value[k]))
       checks.fail(invalid_value_message(field + "[" + std::to_string(k) + "]", value[k], what));
+}
+
+std::string type_name(LatticeType type) {
+  for (const auto& [value, name] : enum_names(type))
+    if (value == type) return std::string(name);
+  return "?";
+}
+
+double norm(const std::vector<double>& value) {
+  double sum = 0.0;
+  for (double x : value) sum += x * x;
+  return std::sqrt(sum);
+}
+
+std::string vector_text(const std::vector<double>& value) {
+  std::string text = "[";
+  for (std::size_t k = 0; k < value.size(); ++k) {
+    if (k > 0) text += ", ";
+    text += to_text(value[k]);
+  }
+  return text + "]";
 }
 
 void check_packing(const PackingScene& scene, const SceneChecks& checks) {
@@ -29,10 +50,21 @@ void check_packing(const PackingScene& scene, const SceneChecks& checks) {
                                             "\"lattice\" nor "
                                             "\"beads\"") +
                 "; allowed: one of them (a lattice of equal beads, or a CSV bead list)");
-  if (scene.lattice && double(scene.lattice->rows) * scene.lattice->columns > 1e8)
-    checks.fail("lattice.rows x lattice.columns = " +
-                to_text(double(scene.lattice->rows) * scene.lattice->columns) +
-                " beads; allowed: at most 1e8");
+  if (scene.lattice) {
+    const LatticeSpec& lattice = *scene.lattice;
+    const bool solid = lattice_dimension(lattice.type) == 3;
+    if (solid && lattice.layers == 0)
+      checks.fail("lattice.layers is missing: a " + type_name(lattice.type) +
+                  " lattice is three-dimensional; allowed: an integer >= 1");
+    if (!solid && lattice.layers != 0)
+      checks.fail("lattice.layers = " + std::to_string(lattice.layers) + " for a " +
+                  type_name(lattice.type) +
+                  " lattice, which is planar; allowed: layers with simple-cubic, fcc or hcp only");
+    const double count = double(std::max(lattice.layers, 1)) * lattice.rows * lattice.columns;
+    if (count > 1e8)
+      checks.fail("lattice.layers x lattice.rows x lattice.columns = " + to_text(count) +
+                  " beads; allowed: at most 1e8");
+  }
   scene.contact.check(checks);
   if (scene.compliant.gaps == granular::Gaps::frozen &&
       scene.compliant.geometry == granular::Geometry::moving)
@@ -50,12 +82,15 @@ void check_walls(const PackingScene& scene, const SceneChecks& checks) {
       checks.fail(path +
                   (wall.side ? " has both a side and a point or normal"
                              : " has neither a side nor a point and normal") +
-                  "; allowed: \"side\" (bottom, top, left, right), or \"point\" and \"normal\"");
+                  "; allowed: \"side\" (bottom, top, left, right, back, front), or \"point\" and "
+                  "\"normal\"");
     if (!line) continue;
-    check_pair(wall.point, path + ".point", "[x, y], finite (m)", checks);
-    check_pair(wall.normal, path + ".normal", "[nx, ny], finite and not zero", checks);
-    if (std::hypot(wall.normal[0], wall.normal[1]) == 0.0)
-      checks.fail(path + ".normal = [0, 0] is invalid; allowed: [nx, ny], not zero");
+    check_vector(wall.point, path + ".point", "[x, y] or [x, y, z], finite (m)", checks);
+    check_vector(wall.normal, path + ".normal", "[nx, ny] or [nx, ny, nz], finite and not zero",
+                 checks);
+    if (norm(wall.normal) == 0.0)
+      checks.fail(path + ".normal = " + vector_text(wall.normal) +
+                  " is invalid; allowed: a normal of length > 0");
   }
 }
 
@@ -64,25 +99,28 @@ void check_strikers(const PackingScene& scene, const SceneChecks& checks) {
   for (std::size_t k = 0; k < scene.strikers.size(); ++k) {
     const StrikerSpec& striker = scene.strikers[k];
     const std::string path = "strikers[" + std::to_string(k) + "]";
-    check_pair(striker.velocity, path + ".velocity", "[vx, vy], finite and not zero (m/s)", checks);
-    const double speed = std::hypot(striker.velocity[0], striker.velocity[1]);
-    if (!(speed >= granular::kSlowestStriker))
-      checks.fail(path + ".velocity = [" + to_text(striker.velocity[0]) + ", " +
-                  to_text(striker.velocity[1]) +
-                  "] is invalid; allowed: [vx, vy] of speed >= 1e-100 m/s (below, m v^2 "
+    check_vector(striker.velocity, path + ".velocity",
+                 "[vx, vy] or [vx, vy, vz], finite and not zero (m/s)", checks);
+    if (!(norm(striker.velocity) >= granular::kSlowestStriker))
+      checks.fail(path + ".velocity = " + vector_text(striker.velocity) +
+                  " is invalid; allowed: a velocity of speed >= 1e-100 m/s (below, m v^2 "
                   "underflows double precision)");
-    const std::size_t wanted = scene.lattice ? 2 : 1;
+    const bool solid = scene.lattice && lattice_dimension(scene.lattice->type) == 3;
+    const std::size_t wanted = scene.lattice ? (solid ? 3 : 2) : 1;
     if (striker.target.size() != wanted)
       checks.fail(path + ".target has " + std::to_string(striker.target.size()) +
                   " entries; allowed: " +
-                  (scene.lattice ? "[row, column] in the lattice" : "[bead] in the bead list"));
+                  (!scene.lattice ? "[bead] in the bead list"
+                   : solid        ? "[layer, row, column] in the lattice"
+                                  : "[row, column] in the lattice"));
     if (scene.lattice) {
-      const int limits[2] = {scene.lattice->rows, scene.lattice->columns};
-      const char* names[2] = {"row", "column"};
-      for (std::size_t i = 0; i < 2; ++i)
-        if (striker.target[i] >= limits[i])
+      const int limits[3] = {scene.lattice->layers, scene.lattice->rows, scene.lattice->columns};
+      const char* names[3] = {"layer", "row", "column"};
+      const std::size_t first = solid ? 0 : 1;  // the planar target has no layer
+      for (std::size_t i = first; i < 3; ++i)
+        if (striker.target[i - first] >= limits[i])
           checks.fail(invalid_value_message(
-              path + ".target[" + std::to_string(i) + "]", striker.target[i],
+              path + ".target[" + std::to_string(i - first) + "]", striker.target[i - first],
               std::string("a ") + names[i] + " in [0, " + std::to_string(limits[i]) +
                   "): the striker is aimed at nothing"));
     }
@@ -107,6 +145,28 @@ PackingScene read_packing_scene(json document, const std::string& source,
   check_strikers(scene, checks);
   scene.impact = granular::resolve_impact(scene.impact, scene.method, {}, source);
   return scene;
+}
+
+void check_dimension(const PackingScene& scene, int dimension) {
+  const SceneChecks checks(scene.source);
+  const std::string packing =
+      dimension == 2 ? "a planar packing: [x, y]" : "a three-dimensional packing: [x, y, z]";
+  auto check = [&](const std::vector<double>& value, const std::string& field) {
+    if (!value.empty() && int(value.size()) != dimension)
+      checks.fail(field + " = " + vector_text(value) + " has " + std::to_string(value.size()) +
+                  " components; allowed: " + std::to_string(dimension) + " in " + packing);
+  };
+  for (std::size_t k = 0; k < scene.walls.size(); ++k) {
+    const std::string path = "walls[" + std::to_string(k) + "]";
+    check(scene.walls[k].point, path + ".point");
+    check(scene.walls[k].normal, path + ".normal");
+    if (dimension == 2 && scene.walls[k].side && *scene.walls[k].side >= WallSide::back)
+      checks.fail(path +
+                  ".side is back or front in a planar packing; allowed: bottom, top, "
+                  "left, right");
+  }
+  for (std::size_t k = 0; k < scene.strikers.size(); ++k)
+    check(scene.strikers[k].velocity, "strikers[" + std::to_string(k) + "].velocity");
 }
 
 PackingScene parse_packing_scene(std::string_view text, const std::string& source,

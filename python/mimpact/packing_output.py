@@ -5,7 +5,8 @@
   per frame the beads (points with radius, velocity and speed; ParaView draws them as spheres
   with its Glyph filter, scaled by radius) and the contacts (segments between the centres, or
   from a centre to the wall, carrying the force), and `packing.pvd`, the collection ParaView
-  opens as one time series.
+  opens as one time series. In two or three dimensions; in the moving geometry the beads are
+  where each frame has them (frame_positions.csv), else at the configuration of the impact.
 - `draw_force_chains(directory, png)`: the contact forces as segments of width proportional to
   force at a few instants, the picture granular physicists call force chains.
 
@@ -31,24 +32,27 @@ def _table(path):
 def load(directory):
     """The output of `mimpact packing --out directory` as a dict of NumPy arrays.
 
-    Keys: summary (the parsed summary.json), centre (bodies x 2, m), radius (m), mass (kg),
-    first, second (per contact; second is -1 for a wall), normal (contacts x 2), point (where
-    each contact touches, m), and when the run kept frames, time (s), force (frames x contacts,
-    N) and velocity (frames x bodies x 2, m/s).
+    Keys: summary (the parsed summary.json), dimension (2 or 3), centre (bodies x dimension,
+    m), radius (m), mass (kg), first, second (per contact; second is -1 for a wall), normal
+    (contacts x dimension), point (where each contact touches, m), and when the run kept
+    frames, time (s), force (frames x contacts, N), velocity (frames x bodies x dimension,
+    m/s) and, in the moving geometry, position (frames x bodies x dimension, m).
     """
     with open(os.path.join(directory, "summary.json")) as stream:
         summary = json.load(stream)
-    _, bodies = _table(os.path.join(directory, "bodies.csv"))
+    names, bodies = _table(os.path.join(directory, "bodies.csv"))
     _, contacts = _table(os.path.join(directory, "contacts.csv"))
+    d = 3 if "z" in names else 2
     data = {
         "summary": summary,
-        "centre": bodies[:, 1:3],
-        "radius": bodies[:, 3],
-        "mass": bodies[:, 4],
+        "dimension": d,
+        "centre": bodies[:, 1:1 + d],
+        "radius": bodies[:, 1 + d],
+        "mass": bodies[:, 2 + d],
         "first": contacts[:, 1].astype(int),
         "second": contacts[:, 2].astype(int),
-        "normal": contacts[:, 4:6],
-        "point": contacts[:, 6:8],
+        "normal": contacts[:, 4:4 + d],
+        "point": contacts[:, 4 + d:4 + 2 * d],
     }
     forces = os.path.join(directory, "frame_forces.csv")
     if os.path.exists(forces):
@@ -56,23 +60,37 @@ def load(directory):
         _, velocity = _table(os.path.join(directory, "frame_velocities.csv"))
         data["time"] = force[:, 0]
         data["force"] = force[:, 1:]
-        data["velocity"] = velocity[:, 1:].reshape(len(velocity), -1, 2)
+        data["velocity"] = velocity[:, 1:].reshape(len(velocity), -1, d)
+        positions = os.path.join(directory, "frame_positions.csv")
+        if os.path.exists(positions):
+            _, position = _table(positions)
+            data["position"] = position[:, 1:].reshape(len(position), -1, d)
     return data
 
 
-def contact_segments(data):
-    """Per contact, its two ends (contacts x 2 x 2, m): the centres of its bodies, or a
-    centre and the point where the bead touches its wall."""
-    start = data["centre"][data["first"]]
+def contact_segments(data, centre=None):
+    """Per contact, its two ends (contacts x 2 x dimension, m): the centres of its bodies
+    (`centre`, bodies x dimension, the configuration of the impact by default), or a centre
+    and the point where the bead touches its wall."""
+    centre = data["centre"] if centre is None else centre
+    start = centre[data["first"]]
     wall = data["second"] < 0
-    end = np.where(wall[:, None], data["point"], data["centre"][np.maximum(data["second"], 0)])
+    # a wall's normal points to the beads: the bead touches it a radius behind its centre
+    touch = start - data["radius"][data["first"]][:, None] * data["normal"]
+    end = np.where(wall[:, None], touch, centre[np.maximum(data["second"], 0)])
     return np.stack([start, end], axis=1)
+
+
+def _space(points):
+    """Points of two or three components as three (ParaView's)."""
+    return np.column_stack([points, np.zeros((len(points), 3 - points.shape[1]))])
 
 
 def write_paraview(directory, out=None):
     """Writes out/beads_NNNN.vtu, out/contacts_NNNN.vtu per frame and out/packing.pvd
-    (out defaults to directory/paraview); returns the path of packing.pvd. Positions are the
-    configuration of the impact, which the LZB model keeps."""
+    (out defaults to directory/paraview); returns the path of packing.pvd. Positions are each
+    frame's in the moving geometry, else the configuration of the impact, which the LZB model
+    keeps."""
     import meshio
 
     data = load(directory)
@@ -83,14 +101,14 @@ def write_paraview(directory, out=None):
     out = out or os.path.join(directory, "paraview")
     os.makedirs(out, exist_ok=True)
     bodies = len(data["radius"])
-    points = np.column_stack([data["centre"], np.zeros(bodies)])
-    segments = contact_segments(data)
-    contact_points = np.column_stack([segments.reshape(-1, 2), np.zeros(2 * len(segments))])
-    lines = np.arange(2 * len(segments)).reshape(-1, 2)
+    lines = np.arange(2 * len(data["first"])).reshape(-1, 2)
     collection = ElementTree.Element("VTKFile", type="Collection", version="0.1")
     datasets = ElementTree.SubElement(collection, "Collection")
     for frame, time in enumerate(data["time"]):
-        velocity = np.column_stack([data["velocity"][frame], np.zeros(bodies)])
+        centre = data["position"][frame] if "position" in data else data["centre"]
+        points = _space(centre)
+        contact_points = _space(contact_segments(data, centre).reshape(-1, data["dimension"]))
+        velocity = _space(data["velocity"][frame])
         beads = meshio.Mesh(
             points, [("vertex", np.arange(bodies).reshape(-1, 1))],
             point_data={"radius": data["radius"], "velocity": velocity,
@@ -109,7 +127,8 @@ def write_paraview(directory, out=None):
 
 def draw_force_chains(directory, png, instants=4, axes=None):
     """Draws the contact forces at `instants` frames spread over the impact, each segment's
-    width proportional to its force, and saves the figure as `png`."""
+    width proportional to its force, and saves the figure as `png`. A three-dimensional
+    packing is seen along z (its x-y projection)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -121,12 +140,13 @@ def draw_force_chains(directory, png, instants=4, axes=None):
     frames = np.unique(np.linspace(0, len(data["time"]) - 1, instants).astype(int))
     figure, panels = plt.subplots(1, len(frames), figsize=(3.2 * len(frames), 3.4),
                                   squeeze=False)
-    segments = contact_segments(data)
     widest = data["force"].max()
     for panel, frame in zip(panels[0], frames):
-        for centre, radius in zip(data["centre"], data["radius"]):
-            panel.add_patch(plt.Circle(centre, radius, fill=False, lw=0.3, color="0.6"))
+        centres = data["position"][frame] if "position" in data else data["centre"]
+        for centre, radius in zip(centres, data["radius"]):
+            panel.add_patch(plt.Circle(centre[:2], radius, fill=False, lw=0.3, color="0.6"))
         force = data["force"][frame]
+        segments = contact_segments(data, centres)[:, :, :2]
         panel.add_collection(LineCollection(segments, linewidths=6.0 * force / widest,
                                             colors="firebrick"))
         panel.set_aspect("equal")

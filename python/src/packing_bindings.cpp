@@ -29,7 +29,8 @@ struct PackingResult : SceneResult {
   Eigen::VectorXd radii;                   // m, per body
   Eigen::MatrixX2i contact_bodies;         // the two bodies of each contact (-1: a wall)
   double contacts_per_step = 0.0;
-  py::object frames = py::none();  // dict: time, forces (frames x contacts), velocities
+  // dict: time, forces (frames x contacts), velocities, and in the moving geometry positions
+  py::object frames = py::none();
 };
 
 packings::PackingScene load_scene(const py::object& scene) {
@@ -53,9 +54,14 @@ py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies, int di
   dict["time"] = Eigen::VectorXd(
       Eigen::Map<const Eigen::VectorXd>(frames.time.data(), Eigen::Index(frames.time.size())));
   dict["forces"] = table(frames.force, frames.force.empty() ? 0 : frames.force.front().size());
-  dict["velocities"] = py::module_::import("numpy")
-                           .attr("asarray")(table(frames.velocity, std::size_t(dimension * bodies)))
-                           .attr("reshape")(Eigen::Index(frames.time.size()), bodies, dimension);
+  const auto per_frame = [&](const std::vector<std::vector<double>>& rows) {
+    return py::module_::import("numpy")
+        .attr("asarray")(table(rows, std::size_t(dimension * bodies)))
+        .attr("reshape")(Eigen::Index(frames.time.size()), bodies, dimension);
+  };
+  dict["velocities"] = per_frame(frames.velocity);
+  // the moving geometry's: where the bodies are at each frame
+  if (!frames.position.empty()) dict["positions"] = per_frame(frames.position);
   return dict;
 }
 

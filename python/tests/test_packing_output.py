@@ -56,3 +56,40 @@ def test_a_run_without_frames_is_named(cli, tmp_path):
         assert "holds no frames" in str(error)
     else:
         raise AssertionError("no error")
+
+
+def test_a_three_dimensional_packing_opens_where_its_beads_are(cli, tmp_path):
+    # an FCC packing in the moving geometry: the ParaView files hold the beads in space, where
+    # each frame has them, and the contacts between them
+    scene = tmp_path / "fcc.json"
+    scene.write_text(
+        '{"material": {"density": 7780, "young": 203e9, "poisson": 0.3},'
+        ' "lattice": {"type": "fcc", "layers": 3, "rows": 3, "columns": 3, "radius": 0.005},'
+        ' "strikers": [{"target": [0, 1, 1], "radius": 0.005, "velocity": [0, 0.3, 1]}],'
+        ' "method": "compliant", "compliant": {"tolerance": 1e-8, "end_time": 1e-4},'
+        ' "record": {"interval": 1e-6, "frames": 20}}')
+    out = tmp_path / "out"
+    subprocess.run([cli, "packing", str(scene), "--out", str(out), "--quiet"], check=True)
+    data = packing_output.load(out)
+    assert data["dimension"] == 3 and data["position"].shape == (len(data["time"]), 28, 3)
+    # the frames' momentum is the striker's, in all three components
+    momentum = np.einsum("b,fbk->fk", data["mass"], data["velocity"])
+    np.testing.assert_allclose(momentum, np.outer(np.ones(len(momentum)),
+                                                  data["mass"][-1] * np.array([0, 0.3, 1])),
+                               rtol=1e-12, atol=1e-17)
+    # the beads move: the last frame is not the first
+    assert np.abs(data["position"][-1] - data["position"][0]).max() > 1e-6
+    collection = packing_output.write_paraview(out)
+    datasets = ElementTree.parse(collection).getroot().find("Collection")
+    last = len(data["time"]) - 1
+    assert len(datasets) == 2 * (last + 1)
+    beads = meshio.read(out / "paraview" / f"beads_{last:04d}.vtu")
+    np.testing.assert_array_equal(beads.points, data["position"][last])
+    np.testing.assert_array_equal(beads.point_data["velocity"], data["velocity"][last])
+    assert np.ptp(beads.points[:, 2]) > 0.01  # three layers
+    contacts = meshio.read(out / "paraview" / f"contacts_{last:04d}.vtu")
+    ends = contacts.points[contacts.cells[0].data]
+    # a contact joins the centres of its beads as they are at that frame
+    np.testing.assert_array_equal(ends[:, 0], data["position"][last][data["first"]])
+    packing_output.draw_force_chains(out, out / "chains.png")
+    assert (out / "chains.png").stat().st_size > 10_000

@@ -48,3 +48,33 @@ def test_bad_input_is_a_value_error_naming_the_field():
         mimpact.run_packing(scene)
     with pytest.raises(ValueError, match="scene = 3 is not allowed"):
         mimpact.run_packing(3)
+
+
+def _fcc(**striker):
+    scene = {"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+             "lattice": {"type": "fcc", "layers": 2, "rows": 2, "columns": 2, "radius": 0.005},
+             "strikers": [{"target": [0, 0, 0], "radius": 0.005, "velocity": [0, 0, 1]}],
+             "impact": {"delta_p": 1e-5}}
+    scene["strikers"][0].update(striker)
+    return scene
+
+
+def test_three_dimensional_packings_and_their_bad_input(tmp_path):
+    result = mimpact.run_packing(_fcc())
+    assert result.post_impact_velocities.shape == (9, 3)
+    np.testing.assert_allclose(result.body_impulses.sum(axis=0), 0.0, atol=1e-15)
+    # issue 24, item f: one clear error each
+    with pytest.raises(ValueError, match=r"strikers\[0\]\.velocity = \[0, 1\] has 2 components; "
+                                         r"allowed: 3 in a three-dimensional packing"):
+        mimpact.run_packing(_fcc(velocity=[0, 1]))
+    walled = read_scene(HEXAGON)
+    walled["walls"] = [{"point": [0, -0.005], "normal": [0, 0]}]
+    with pytest.raises(ValueError, match=r"walls\[0\]\.normal = \[0, 0\] is invalid; allowed: a "
+                                         r"normal of length > 0"):
+        mimpact.run_packing(walled)
+    (tmp_path / "beads.csv").write_text("x,y,z,radius\n0,0,0,0.005\n0.009,0,0,0.005\n")
+    listed = {"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+              "beads": {"file": "beads.csv"},
+              "strikers": [{"target": [0], "radius": 0.005, "velocity": [1, 0, 0]}]}
+    with pytest.raises(ValueError, match=r"bead 0 and bead 1 overlap by 0\.001"):
+        mimpact.run_packing(listed, data_dir=tmp_path)

@@ -578,4 +578,36 @@ TEST(PackingCommand, BadSceneIsNamedAndWritesNothing) {
   fs::remove_all(dir);
 }
 
+// Issue 24, item f: the three-dimensional packings' bad input, one clear error each, before
+// anything is written.
+TEST(PackingCommand, ThreeDimensionalBadInputIsNamedAndWritesNothing) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("mimpact_bad_packing_3d_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string steel = R"("material": {"density": 7780, "young": 203e9, "poisson": 0.3})";
+  std::ofstream(dir / "beads.csv") << "x,y,z,radius\n0,0,0,0.005\n0.009,0,0,0.005\n";
+  const std::pair<std::string, std::string> kCases[] = {
+      {R"("lattice": {"type": "fcc", "layers": 2, "rows": 2, "columns": 2, "radius": 0.005},
+          "strikers": [{"target": [0, 0, 0], "radius": 0.005, "velocity": [0, 1]}])",
+       "strikers[0].velocity = [0, 1] has 2 components; allowed: 3 in a three-dimensional "
+       "packing"},
+      {R"("lattice": {"type": "simple-cubic", "layers": 2, "rows": 2, "columns": 2,
+          "radius": 0.005}, "walls": [{"point": [0, 0, -0.005], "normal": [0, 0, 0]}],
+          "strikers": [{"target": [0, 0, 0], "radius": 0.005, "velocity": [0, 0, 1]}])",
+       "walls[0].normal = [0, 0, 0] is invalid; allowed: a normal of length > 0"},
+      {R"("beads": {"file": "beads.csv"},
+          "strikers": [{"target": [0], "radius": 0.005, "velocity": [1, 0, 0]}])",
+       "bead 0 and bead 1 overlap by 0.001"}};
+  for (const auto& [body, message] : kCases) {
+    std::ofstream(dir / "scene.json") << "{" << steel << ", " << body << "}";
+    const CliRun run =
+        mimpact("packing " + (dir / "scene.json").string() + " --out " + (dir / "out").string());
+    EXPECT_EQ(run.exit_code, 1) << message;
+    EXPECT_NE(run.err.find(message), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace

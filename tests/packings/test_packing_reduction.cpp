@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "mimpact/chains/chain_impact.hpp"
+#include "mimpact/chains/chain_run.hpp"
 #include "packing_runs.hpp"
 
 namespace mimpact::testing {
@@ -44,17 +45,25 @@ Eigen::Index contact_between(const packings::PackingModel& model, Eigen::Index a
   return 0;
 }
 
-// beads[k] of the packing is bead k of the chain; `axis` the line's direction (0 x, 1 y).
+// beads[k] of the packing is bead k of the chain; `axis` the line's direction (0 x, 1 y, 2 z).
 void expect_chain(const PackingCase& packing, const std::vector<Eigen::Index>& beads, int axis,
                   const granular::ImpactOutcome& chain) {
   const packings::PackingModel& model = packing.model;
+  const int d = model.dimension;
   const Eigen::VectorXd& v = packing.run.impact.velocity_after;
   const Eigen::Index striker = model.body_count() - 1;
-  EXPECT_NEAR(v(2 * striker + axis), chain.velocity_after(0), 1e-12);
-  EXPECT_EQ(v(2 * striker + 1 - axis), 0.0);
+  // the body's velocity along the line, and across it (exactly 0)
+  auto along = [&](Eigen::Index b) { return v(d * b + axis); };
+  auto across = [&](Eigen::Index b) {
+    Eigen::VectorXd w = model.of(v, b);
+    w(axis) = 0.0;
+    return w.norm();
+  };
+  EXPECT_NEAR(along(striker), chain.velocity_after(0), 1e-12);
+  EXPECT_EQ(across(striker), 0.0);
   for (std::size_t k = 0; k < beads.size(); ++k) {
-    EXPECT_NEAR(v(2 * beads[k] + axis), chain.velocity_after(Eigen::Index(k) + 1), 1e-12) << k;
-    EXPECT_EQ(v(2 * beads[k] + 1 - axis), 0.0) << k;
+    EXPECT_NEAR(along(beads[k]), chain.velocity_after(Eigen::Index(k) + 1), 1e-12) << k;
+    EXPECT_EQ(across(beads[k]), 0.0) << k;
   }
   // every other bead is untouched, exactly
   double others = 0.0;
@@ -105,6 +114,63 @@ TEST(PackingReduction, HexagonalPackingOfOneRowIsAChain) {
     std::vector<Eigen::Index> row(kColumns);
     std::iota(row.begin(), row.end(), Eigen::Index(0));
     expect_chain(packing, row, 0, chain_of(kColumns, method.impact));
+  }
+}
+
+// Issue 24, item d: a simple cubic packing struck along a row (x) or a column of its layers
+// (z) is the chain of that line, and every other bead stays at rest.
+TEST(PackingReduction, SimpleCubicPackingStruckAlongALineIsTheChainOfThatLine) {
+  constexpr int kLayers = 4, kRows = 3, kColumns = 5;
+  const std::string lattice = R"("lattice": {"type": "simple-cubic", "layers": 4, "rows": 3,
+                                  "columns": 5, "radius": 0.005})";
+  for (const Method& method : kMethods) {
+    SCOPED_TRACE(method.name);
+    const PackingCase along_row =
+        run_packing("{" + kSteel + ", " + lattice + R"(, "strikers": [{"target": [2, 1, 0],
+            "radius": 0.005, "velocity": [1.0, 0.0, 0.0]}], )" +
+                    method.impact + "}");
+    std::vector<Eigen::Index> row;
+    for (int c = 0; c < kColumns; ++c) row.push_back((2 * kRows + 1) * kColumns + c);
+    expect_chain(along_row, row, 0, chain_of(kColumns, method.impact));
+    const PackingCase across_layers =
+        run_packing("{" + kSteel + ", " + lattice + R"(, "strikers": [{"target": [0, 2, 3],
+            "radius": 0.005, "velocity": [0.0, 0.0, 1.0]}], )" +
+                    method.impact + "}");
+    std::vector<Eigen::Index> column;
+    for (int l = 0; l < kLayers; ++l) column.push_back((l * kRows + 2) * kColumns + 3);
+    expect_chain(across_layers, column, 2, chain_of(kLayers, method.impact));
+  }
+}
+
+// Issue 24, item a: in the moving geometry the beads of a line are still a chain, whose gaps
+// are linear: the compliant contacts of a hexagonal packing of one row and of a simple cubic
+// one struck along a row (granular::MovingContacts) equal those of the chain (the frozen
+// geometry's integrator), each run at tolerance 1e-13.
+TEST(PackingReduction, ALineInTheMovingGeometryIsTheChain) {
+  const std::string compliant = R"("method": "compliant", "compliant": {"tolerance": 1e-13})";
+  const chains::ChainScene scene = chains::parse_chain_scene(
+      "{" + kSteel + R"(, "chain": {"segments": [{"count": 10, "radius": 0.005}]},
+          "strikers": [{"side": "left", "radius": 0.005, "velocity": 1.0}], )" +
+          compliant + "}",
+      "chain");
+  const granular::SceneRun chain = chains::run_chain_scene(scene, chains::build_chain_model(scene));
+  const PackingCase line =
+      run_packing(lattice_scene("hexagonal", 1, 10, "[0, 0]", "[1.0, 0.0]", compliant));
+  const PackingCase cubic = run_packing("{" + kSteel + R"(, "lattice": {"type": "simple-cubic",
+      "layers": 2, "rows": 2, "columns": 10, "radius": 0.005}, "strikers": [{"target": [1, 0, 0],
+      "radius": 0.005, "velocity": [1.0, 0.0, 0.0]}], )" +
+                                        compliant + "}");
+  for (const PackingCase* packing : {&line, &cubic}) {
+    const Eigen::VectorXd& v = packing->run.impact.velocity_after;
+    const int d = packing->model.dimension;
+    const Eigen::Index first = packing == &line ? 0 : 2 * 10,
+                       striker = packing->model.body_count() - 1;
+    double largest = std::abs(v(d * striker) - chain.impact.velocity_after(0));
+    for (Eigen::Index k = 0; k < 10; ++k)
+      largest =
+          std::max(largest, std::abs(v(d * (first + k)) - chain.impact.velocity_after(k + 1)));
+    std::printf("%dd line against the chain: %.3e m/s\n", d, largest);
+    EXPECT_LT(largest, 1e-12);
   }
 }
 

@@ -27,8 +27,18 @@ struct Frames {
   std::vector<double> time;                   // s since the first impact
   std::vector<std::vector<double>> force;     // [frame][contact] (N)
   std::vector<std::vector<double>> velocity;  // [frame][coordinate] (m/s)
+  // [frame][coordinate] (m): where the bodies are, in the moving geometry; empty in the frozen
+  // one, whose configuration is the impact's
+  std::vector<std::vector<double>> position;
 
   bool empty() const { return time.empty(); }
 };
+
+// "time,<symbol>x_0,<symbol>y_0,..." (one column per component of each listed body; in one
+// dimension "<symbol>_0", or "x_0" without a symbol) then one row per sample of `rows`
+// ([sample][dimension * body + component]), 17 significant digits.
+std::string vector_csv(const std::vector<double>& time,
+                       const std::vector<std::vector<double>>& rows, const std::vector<int>& bodies,
+                       int dimension, const std::string& symbol);
 
 }  // namespace mimpact::granular

@@ -43,7 +43,7 @@ struct PackingModel : granular::ContactModel {
   Eigen::MatrixXd position;     // m, of the centres at t = 0: a row per body
   std::vector<PackingContact> contacts;
   std::vector<Vector> wall_points, wall_normals;  // m; unit, towards the beads
-  int rows = 0, columns = 0;                      // of a lattice (0 for a bead list)
+  int layers = 0, rows = 0, columns = 0;  // of a lattice (0 for a bead list; layers 0 in the plane)
 
   // body b's components of `values` (per coordinate: velocities, impulses)
   Vector of(const Eigen::VectorXd& values, Eigen::Index body) const {
@@ -65,7 +65,8 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const Pac
 // Total momentum (N s) of the bodies moving with `velocity` (per coordinate).
 Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity);
 
-// The body of bead (row, column) of a lattice, or bead `index` of a bead list.
+// The body of bead (row, column) of a planar lattice, (layer, row, column) of a three-dimensional
+// one, or bead `index` of a bead list.
 Eigen::Index body_of_target(const PackingModel& model, const std::vector<int>& target);
 
 }  // namespace mimpact::packings

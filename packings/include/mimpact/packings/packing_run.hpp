@@ -39,8 +39,11 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
 // `wall`; x, y where the contact touches).
 std::string bodies_csv(const PackingModel& model);
 std::string contacts_csv(const PackingModel& model);
-// Frames as two tables: "time,F_0,...,F_m-1" and "time,vx_0,vy_0,...", one row per frame.
+// Frames as two tables: "time,F_0,...,F_m-1" and "time,vx_0,vy_0,..." (with vz_0 in space),
+// one row per frame.
 std::string frame_forces_csv(const granular::Frames& frames);
-std::string frame_velocities_csv(const granular::Frames& frames);
+std::string frame_velocities_csv(const granular::Frames& frames, int dimension);
+// The frames' positions, "time,x_0,y_0,...", in the moving geometry (frames.position).
+std::string frame_positions_csv(const granular::Frames& frames, int dimension);
 
 }  // namespace mimpact::packings

@@ -14,21 +14,32 @@
 #include "mimpact/kernel/parameters.hpp"
 #include "mimpact/plugins/lzb_impact_options.hpp"
 
-// The planar packing scene file, docs/scenes.md ("Planar packings"). Like the chain scenes,
-// every struct lists its fields once (visit_fields): the keys, their checks and the messages.
+// The packing scene file, docs/scenes.md ("Packings"), in two or three dimensions. Like the chain
+// scenes, every struct lists its fields once (visit_fields): the keys, their checks and the
+// messages.
 namespace mimpact::packings {
 
-enum class LatticeType { square, hexagonal };
+enum class LatticeType { square, hexagonal, simple_cubic, fcc, hcp };
 constexpr auto enum_names(LatticeType) {
   using Name = std::pair<LatticeType, std::string_view>;
-  return std::array{Name{LatticeType::square, "square"}, Name{LatticeType::hexagonal, "hexagonal"}};
+  return std::array{Name{LatticeType::square, "square"}, Name{LatticeType::hexagonal, "hexagonal"},
+                    Name{LatticeType::simple_cubic, "simple-cubic"}, Name{LatticeType::fcc, "fcc"},
+                    Name{LatticeType::hcp, "hcp"}};
+}
+// 2 for the planar lattices, 3 for the others.
+constexpr int lattice_dimension(LatticeType type) {
+  return type == LatticeType::square || type == LatticeType::hexagonal ? 2 : 3;
 }
 
-// Equal beads touching on a lattice: rows along x, row 0 at the bottom; bead (row r, column c)
-// is number r * columns + c. Square: centre (2a c, 2a r). Hexagonal: centre
-// (2a c + a (r mod 2), sqrt(3) a r), odd rows shifted by a.
+// Equal beads touching on a lattice: rows along x, row 0 at the bottom, layers along z; bead
+// (layer l, row r, column c) is number (l rows + r) columns + c (l = 0 in the plane). Square:
+// centre (2a c, 2a r). Hexagonal: (2a c + a (r mod 2), sqrt(3) a r), odd rows shifted by a.
+// Simple cubic: (2a c, 2a r, 2a l). FCC and HCP: hexagonal layers 2 sqrt(2/3) a apart, each
+// shifted by (a, a / sqrt(3)) from the one below, stacked ABCABC (FCC, its (111) planes) or
+// ABAB (HCP).
 struct LatticeSpec {
   LatticeType type = LatticeType::square;
+  int layers = 0;  // three-dimensional lattices only
   int rows = 0;
   int columns = 0;
   double radius = 0.0;          // a (m)
@@ -38,6 +49,8 @@ struct LatticeSpec {
   static void visit_fields(Self& self, Visit&& field) {
     field("type", self.type);
     // a bound on the count, so that a typo does not ask for 1e12 beads of memory
+    field("layers", self.layers,
+          within(1, 1e7).described("an integer >= 1, at most 1e7 (three-dimensional lattices)"));
     field("rows", self.rows, within(1, 1e7).described("an integer >= 1, at most 1e7").needed());
     field("columns", self.columns,
           within(1, 1e7).described("an integer >= 1, at most 1e7").needed());
@@ -46,8 +59,8 @@ struct LatticeSpec {
   }
 };
 
-// Beads listed in a CSV file: a header "x,y,radius" (m), then one bead per line, numbered in
-// the file's order.
+// Beads listed in a CSV file: a header "x,y,radius" (m, a planar packing) or "x,y,z,radius"
+// (three dimensions), then one bead per line, numbered in the file's order.
 struct BeadListSpec {
   std::string file;  // relative to the scene file's directory
   granular::Material material;
@@ -59,19 +72,22 @@ struct BeadListSpec {
   }
 };
 
-enum class WallSide { bottom, top, left, right };
+// bottom and top along y, left and right along x, back and front along z (three dimensions)
+enum class WallSide { bottom, top, left, right, back, front };
 constexpr auto enum_names(WallSide) {
   using Name = std::pair<WallSide, std::string_view>;
   return std::array{Name{WallSide::bottom, "bottom"}, Name{WallSide::top, "top"},
-                    Name{WallSide::left, "left"}, Name{WallSide::right, "right"}};
+                    Name{WallSide::left, "left"},     Name{WallSide::right, "right"},
+                    Name{WallSide::back, "back"},     Name{WallSide::front, "front"}};
 }
 
-// A rigid straight wall: on one side of the packing, touching its outermost beads, or the line
-// through `point` whose `normal` points to the beads' side.
+// A rigid flat wall (a line in the plane, a plane in space): on one side of the packing,
+// touching its outermost beads, or through `point` with its `normal` pointing to the beads'
+// side.
 struct WallSpec {
   std::optional<WallSide> side;
-  std::vector<double> point;   // m, [x, y]
-  std::vector<double> normal;  // [nx, ny], normalized when read
+  std::vector<double> point;   // m, [x, y] or [x, y, z]
+  std::vector<double> normal;  // [nx, ny] or [nx, ny, nz], normalized when read
   granular::Material material;
 
   template <class Self, class Visit>
@@ -86,18 +102,20 @@ struct WallSpec {
 // A bead thrown at a bead of the packing, placed against its target on the side it comes
 // from (gap away along its velocity).
 struct StrikerSpec {
-  // [row, column] in a lattice, [bead] in a bead list
+  // [row, column] in a planar lattice, [layer, row, column] in a three-dimensional one, [bead]
+  // in a bead list
   std::vector<int> target;
   double radius = 0.0;           // m
-  std::vector<double> velocity;  // m/s, [vx, vy]
+  std::vector<double> velocity;  // m/s, one component per dimension
   double gap = 0.0;              // m between the striker and its target, >= 0
   granular::Material material;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
-    field("target", self.target, at_least(0, "[row, column], or [bead] in a bead list").needed());
+    field("target", self.target,
+          at_least(0, "[row, column], [layer, row, column], or [bead] in a bead list").needed());
     field("radius", self.radius, positive("m").needed());
-    field("velocity", self.velocity, any("m/s, [vx, vy]").needed());
+    field("velocity", self.velocity, any("m/s, [vx, vy] or [vx, vy, vz]").needed());
     field("gap", self.gap, at_least(0.0, "m"));
     field("material", self.material, any().needed());
   }
@@ -124,8 +142,8 @@ struct RecordSpec {
   }
 };
 
-// A planar packing scene file. Bodies are the packing's beads (a lattice row by row, or the
-// bead list's order), then the strikers.
+// A packing scene file. Bodies are the packing's beads (a lattice layer by layer and row by
+// row, or the bead list's order), then the strikers.
 struct PackingScene {
   std::optional<granular::Material> material;  // of the bodies and walls that name none
   std::optional<LatticeSpec> lattice;
@@ -169,6 +187,10 @@ struct PackingScene {
 PackingScene read_packing_scene(nlohmann::json document, const std::string& source,
                                 const std::filesystem::path& directory,
                                 const kernel::JsonLocations* locations = nullptr);
+// Throws InvalidInput naming the field when a wall's point or normal, or a striker's velocity,
+// has not one component per dimension of the packing (2 in the plane, 3 in space), or a wall
+// side is back or front in the plane: the check of a packing whose beads are known.
+void check_dimension(const PackingScene& scene, int dimension);
 // Parses and reads a scene (JSON, comments allowed).
 PackingScene parse_packing_scene(std::string_view text, const std::string& source,
                                  const std::filesystem::path& directory = ".");
