@@ -1,0 +1,202 @@
+// The work-precision study of packings against a DEM code (issue 24, item 4): the same scenes,
+// in one benchmark run, by mimpact's compliant contacts in the moving geometry over their
+// tolerance and by LAMMPS (Debian's `lammps`: pair_style granular with a pure Hertz normal
+// force of the same K, velocity Verlet; bench/peers/lammps_packing.py) over its time step.
+// Each run's error is that of the bodies' velocities at the scene's end time, relative to the
+// striker's speed, against mimpact at tolerance 1e-10 (which agrees with LAMMPS's most
+// accurate step to its round-off: tests/packings/test_packing_convergence.cpp): the root mean
+// square over bodies (counter rms_error) and the worst body (worst_error). mimpact's time is
+// its wall time; LAMMPS's, its own "Loop time" (manual time: its start-up is not counted).
+// When /usr/bin/lmp is absent the LAMMPS runs are skipped with a message.
+// bench/packing_work_precision.py runs this program and writes docs/performance_packings.md.
+//
+// range(0): the scene (kScenes); range(1): mimpact's tolerance 10^-range(1), or LAMMPS's step
+// kLargestStep / 2^range(1).
+#include <benchmark/benchmark.h>
+
+#include <unistd.h>
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "mimpact/packings/packing_run.hpp"
+
+namespace {
+
+using namespace mimpact;
+
+struct Scene {
+  const char* name;
+  const char* lattice;  // the scene's "lattice"
+  const char* target;   // of the striker, which flies along +y (planar) or +z
+  double end_time;      // s: just after the front has crossed
+};
+
+const Scene kScenes[] = {
+    {"hexagonal 32 x 32", R"({"type": "hexagonal", "rows": 32, "columns": 32, "radius": 0.005})",
+     "[0, 16]", 1e-3},
+    {"hexagonal 56 x 56", R"({"type": "hexagonal", "rows": 56, "columns": 56, "radius": 0.005})",
+     "[0, 28]", 1.75e-3},
+    {"hexagonal 100 x 100",
+     R"({"type": "hexagonal", "rows": 100, "columns": 100, "radius": 0.005})", "[0, 50]", 3.1e-3},
+    {"fcc 20 x 20 x 20",
+     R"({"type": "fcc", "layers": 20, "rows": 20, "columns": 20, "radius": 0.005})", "[0, 10, 10]",
+     5e-4}};
+constexpr double kLargestStep = 1.6e-6;  // s, LAMMPS's coarsest
+constexpr double kReferenceTolerance = 1e-10;
+
+std::string scene_text(const Scene& scene, double tolerance) {
+  const bool planar = std::string(scene.lattice).find("hexagonal") != std::string::npos;
+  char compliant[160];
+  std::snprintf(compliant, sizeof compliant,
+                R"("method": "compliant", "compliant": {"tolerance": %.17g, "end_time": %.17g})",
+                tolerance, scene.end_time);
+  return std::string(R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},)") +
+         R"("lattice": )" + scene.lattice + R"(, "strikers": [{"target": )" + scene.target +
+         R"(, "radius": 0.005, "velocity": )" + (planar ? "[0, 1]" : "[0, 0, 1]") + "}], " +
+         compliant + "}";
+}
+
+struct Run {
+  packings::PackingModel model;
+  Eigen::VectorXd velocity;  // per coordinate, at the end time
+  std::int64_t steps = 0;
+};
+
+Run run_mimpact(const Scene& scene, double tolerance) {
+  const packings::PackingScene parsed =
+      packings::parse_packing_scene(scene_text(scene, tolerance), scene.name);
+  Run run{packings::build_packing_model(parsed), {}, 0};
+  const granular::SceneRun outcome = packings::run_packing_scene(parsed, run.model);
+  run.velocity = outcome.impact.velocity_after;
+  run.steps = outcome.impact.result.steps;
+  return run;
+}
+
+const Run& reference(int scene) {
+  static std::map<int, Run> references;
+  auto found = references.find(scene);
+  if (found == references.end())
+    found = references.emplace(scene, run_mimpact(kScenes[scene], kReferenceTolerance)).first;
+  return found->second;
+}
+
+// RMS and worst of |v - v_ref| / V over the bodies
+void set_errors(benchmark::State& state, const packings::PackingModel& model,
+                const Eigen::VectorXd& velocity, const Eigen::VectorXd& reference_velocity) {
+  const int d = model.dimension;
+  double sum = 0.0, worst = 0.0;
+  for (Eigen::Index b = 0; b < model.body_count(); ++b) {
+    const double error = (velocity.segment(d * b, d) - reference_velocity.segment(d * b, d)).norm();
+    sum += error * error;
+    worst = std::max(worst, error);
+  }
+  const double speed = 1.0;  // the striker's, m/s
+  state.counters["rms_error"] = std::sqrt(sum / double(model.body_count())) / speed;
+  state.counters["worst_error"] = worst / speed;
+  state.counters["bodies"] = double(model.body_count());
+}
+
+void BM_PackingMimpact(benchmark::State& state) {
+  const int scene = int(state.range(0));
+  const double tolerance = std::pow(10.0, -double(state.range(1)));
+  const Run& truth = reference(scene);
+  Run run;
+  for (auto _ : state) run = run_mimpact(kScenes[scene], tolerance);
+  set_errors(state, run.model, run.velocity, truth.velocity);
+  state.counters["steps"] = double(run.steps);
+  state.SetLabel(kScenes[scene].name);
+}
+
+// LAMMPS on the model's bodies, through bench/peers/lammps_packing.py: its loop time (s), or a
+// negative number when it did not run; the final velocities per coordinate.
+double run_lammps(const packings::PackingModel& model, const Scene& scene, double step,
+                  Eigen::VectorXd& velocity) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("mimpact_lammps_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const int d = model.dimension;
+  {
+    std::ofstream bodies(dir / "bodies.csv");
+    bodies << "x,y,z,radius,mass,vx,vy,vz\n";
+    bodies.precision(17);
+    for (Eigen::Index b = 0; b < model.body_count(); ++b) {
+      for (int k = 0; k < 3; ++k) bodies << (k < d ? model.position(b, k) : 0.0) << ",";
+      bodies << model.radius(b) << "," << model.mass(d * b);
+      for (int k = 0; k < 3; ++k) bodies << "," << (k < d ? model.velocity(d * b + k) : 0.0);
+      bodies << "\n";
+    }
+  }
+  char command[1024];
+  std::snprintf(command, sizeof command,
+                "/usr/bin/python3 %s/bench/peers/lammps_packing.py --bodies %s --dimension %d "
+                "--hertz-k %.17g --dt %.17g --end-time %.17g --out %s",
+                MIMPACT_SOURCE_DIR, (dir / "bodies.csv").c_str(), d, model.laws.front().stiffness,
+                step, scene.end_time, (dir / "v.csv").c_str());
+  FILE* pipe = popen(command, "r");
+  if (!pipe) return -1.0;
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  if (pclose(pipe) != 0) return -1.0;
+  const auto at = output.rfind("\"loop_time_s\": ");
+  if (at == std::string::npos) return -1.0;
+  const double loop_time = std::stod(output.substr(at + 15));
+  std::ifstream in(dir / "v.csv");
+  std::string line;
+  std::getline(in, line);  // vx,vy,vz
+  velocity.resize(model.mass.size());
+  for (Eigen::Index b = 0; b < model.body_count() && std::getline(in, line); ++b) {
+    std::istringstream cells(line);
+    std::string cell;
+    for (int k = 0; k < 3 && std::getline(cells, cell, ','); ++k)
+      if (k < d) velocity(d * b + k) = std::stod(cell);
+  }
+  fs::remove_all(dir);
+  return loop_time;
+}
+
+void BM_PackingLammps(benchmark::State& state) {
+  if (!std::filesystem::exists("/usr/bin/lmp")) {
+    state.SkipWithError(
+        "LAMMPS is not installed (apt-get install --no-install-recommends lammps, or "
+        "bench/packing_work_precision.py --install-lammps)");
+    return;
+  }
+  const int scene = int(state.range(0));
+  const double step = kLargestStep / std::pow(2.0, double(state.range(1)));
+  const Run& truth = reference(scene);
+  Eigen::VectorXd velocity;
+  for (auto _ : state) {
+    const double loop_time = run_lammps(truth.model, kScenes[scene], step, velocity);
+    if (loop_time < 0.0) {
+      state.SkipWithError("LAMMPS failed (run bench/peers/lammps_packing.py --selftest)");
+      return;
+    }
+    state.SetIterationTime(loop_time);
+  }
+  set_errors(state, truth.model, velocity, truth.velocity);
+  state.counters["dt"] = step;
+  state.SetLabel(kScenes[scene].name);
+}
+
+void tolerances(benchmark::internal::Benchmark* b) {
+  for (int scene = 0; scene < int(std::size(kScenes)); ++scene)
+    for (int exponent = 3; exponent <= 9; ++exponent) b->Args({scene, exponent});
+}
+void steps(benchmark::internal::Benchmark* b) {
+  for (int scene = 0; scene < int(std::size(kScenes)); ++scene)
+    for (int halvings = 0; halvings <= 7; ++halvings) b->Args({scene, halvings});
+}
+
+BENCHMARK(BM_PackingMimpact)->Apply(tolerances)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_PackingLammps)->Apply(steps)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

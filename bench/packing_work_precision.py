@@ -1,0 +1,148 @@
+#!/usr/bin/python3
+"""Runs bench_packing_peers (built in Release) once and writes docs/performance_packings.md and
+docs/performance/packings_work_precision.png: time against error for mimpact's compliant
+contacts in the moving geometry and for LAMMPS, on the same packings, in one benchmark run.
+Every number of the page comes from that run.
+
+    /usr/bin/python3 bench/packing_work_precision.py --bench build/release/bench/bench_packing_peers \
+        [--scenes 0,1] [--install-lammps]
+
+Scenes (bench_packing_peers.cpp): 0 hexagonal 32 x 32 to 1 ms, 1 hexagonal 56 x 56 to 1.75 ms,
+2 hexagonal 100 x 100 to 3.1 ms, 3 FCC 20 x 20 x 20 to 0.5 ms. Without LAMMPS (/usr/bin/lmp) its
+runs are skipped with a message, and the page says so; --install-lammps installs Debian's.
+"""
+import argparse
+import json
+import math
+import os
+import platform
+import subprocess
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+CODES = {"Mimpact": "mimpact, moving geometry (over its tolerance)",
+         "Lammps": "LAMMPS, velocity Verlet (over its step)"}
+TARGETS = (1e-4, 1e-6)
+
+
+def run(bench, scenes, out):
+    """One run of both families on `scenes`, saved as JSON in `out`."""
+    pattern = "^BM_Packing(Mimpact|Lammps)/(" + "|".join(str(s) for s in scenes) + ")/"
+    subprocess.run([bench, f"--benchmark_filter={pattern}", "--benchmark_format=console",
+                    f"--benchmark_out={out}", "--benchmark_out_format=json"], check=True)
+
+
+def parse(out):
+    """The saved run: its context, {scene: {code: [rows]}} and the skip messages."""
+    data = json.loads(Path(out).read_text())
+    scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+    results, skipped = {}, []
+    for b in data["benchmarks"]:
+        code = b["name"].split("/")[0].replace("BM_Packing", "")
+        if b.get("error_occurred"):
+            skipped.append(b.get("error_message", "skipped"))
+            continue
+        knob = (f"dt = {b['dt']:.3g} s" if code == "Lammps"
+                else f"tolerance 1e-{b['name'].split('/')[2]}")
+        results.setdefault(b["label"], {}).setdefault(code, []).append(
+            {"seconds": b["real_time"] * scale[b["time_unit"]], "rms": b["rms_error"],
+             "worst": b["worst_error"], "knob": knob, "bodies": int(b["bodies"])})
+    return data["context"], results, sorted(set(skipped))
+
+
+def time_at(rows, target):
+    """The time (s) a code needs for an RMS error of `target`: interpolated log-log between
+    the two runs that bracket it; None when no run reaches it."""
+    points = sorted((r["rms"], r["seconds"]) for r in rows if r["rms"] > 0)
+    for (e1, t1), (e2, t2) in zip(points, points[1:]):
+        if e1 <= target <= e2:
+            w = (math.log(target) - math.log(e1)) / (math.log(e2) - math.log(e1))
+            return math.exp(math.log(t1) + w * (math.log(t2) - math.log(t1)))
+    return None
+
+
+def figure(results, png):
+    fig, panels = plt.subplots(1, len(results), figsize=(5.2 * len(results), 4.2), squeeze=False)
+    for panel, (scene, codes) in zip(panels[0], results.items()):
+        for code, rows in codes.items():
+            rows = sorted(rows, key=lambda r: r["seconds"])
+            marker, color = ("s", "tab:green") if code == "Mimpact" else ("o", "tab:gray")
+            panel.loglog([r["rms"] for r in rows], [r["seconds"] for r in rows], marker=marker,
+                         color=color, label=CODES[code] + ", RMS")
+            panel.loglog([r["worst"] for r in rows], [r["seconds"] for r in rows],
+                         marker=marker, color=color, ls=":", mfc="none",
+                         label=CODES[code] + ", worst bead")
+        panel.set_xlabel("error of the velocities at the end time, relative to V")
+        panel.set_ylabel("time (s)")
+        panel.set_title(scene)
+        panel.grid(True, which="both", alpha=0.3)
+        panel.invert_xaxis()
+    panels[0][0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=130)
+    plt.close(fig)
+
+
+def page(context, results, skipped, png, command):
+    lines = ["# Packings: mimpact against LAMMPS, time against accuracy", "",
+             f"Written by `{command}` from one run of `bench/bench_packing_peers.cpp` on "
+             f"{platform.node()} ({context.get('num_cpus')} CPUs, {context.get('date')}). "
+             "Both codes integrate the same beads (steel, a = 5 mm, struck at 1 m/s by an "
+             "equal bead, e = 1) with the same Hertz law; each error is that of the bodies' "
+             "velocities at the end time against mimpact at tolerance 1e-10, relative to the "
+             "striker's speed: the RMS over the bodies and the worst body. mimpact's time is "
+             "its wall time; LAMMPS's its own loop time, start-up excluded.", "",
+             f"![time against error](performance/{png.name})", ""]
+    if skipped:
+        lines += ["LAMMPS was not run: " + "; ".join(skipped) + ".", ""]
+    for scene, codes in results.items():
+        lines += [f"## {scene}", "", "| target RMS error | mimpact (s) | LAMMPS (s) | LAMMPS / mimpact |",
+                  "|---|---|---|---|"]
+        for target in TARGETS:
+            m = time_at(codes.get("Mimpact", []), target)
+            lammps = time_at(codes.get("Lammps", []), target)
+            shown = [f"{t:.3g}" if t else "not reached" for t in (m, lammps)]
+            ratio = f"{lammps / m:.2f}" if m and lammps else "—"
+            lines.append(f"| {target:g} | {shown[0]} | {shown[1]} | {ratio} |")
+        lines += ["", "| code | setting | time (s) | RMS error | worst bead |", "|---|---|---|---|---|"]
+        for code, rows in codes.items():
+            for r in sorted(rows, key=lambda r: r["seconds"]):
+                lines.append(f"| {code.lower()} | {r['knob']} | {r['seconds']:.3g} | "
+                             f"{r['rms']:.2e} | {r['worst']:.2e} |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--bench", required=True)
+    parser.add_argument("--scenes", default="0", help="comma-separated scene numbers")
+    parser.add_argument("--install-lammps", action="store_true")
+    parser.add_argument("--reuse", action="store_true", help="redraw from the last run's JSON")
+    args = parser.parse_args()
+    if args.install_lammps and not os.path.exists("/usr/bin/lmp"):
+        subprocess.run(["apt-get", "install", "-y", "--no-install-recommends", "lammps"],
+                       check=True)
+    if not os.path.exists("/usr/bin/lmp"):
+        print("LAMMPS is not installed: its runs are skipped (--install-lammps installs it)")
+    out = ROOT / "build" / "packing_work_precision.json"
+    if not args.reuse:
+        run(args.bench, [int(s) for s in args.scenes.split(",")], out)
+    context, results, skipped = parse(out)
+    png = ROOT / "docs" / "performance" / "packings_work_precision.png"
+    png.parent.mkdir(exist_ok=True)
+    figure(results, png)
+    command = "/usr/bin/python3 bench/packing_work_precision.py --bench " \
+              f"build/release/bench/bench_packing_peers --scenes {args.scenes}"
+    (ROOT / "docs" / "performance_packings.md").write_text(
+        page(context, results, skipped, png, command) + "\n")
+    print(ROOT / "docs" / "performance_packings.md")
+
+
+if __name__ == "__main__":
+    main()
