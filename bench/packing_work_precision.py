@@ -99,7 +99,7 @@ def page(context, results, skipped, png, command):
              "its wall time; LAMMPS's its own loop time, start-up excluded.", "",
              f"![time against error](performance/{png.name})", ""]
     if skipped:
-        lines += ["LAMMPS was not run: " + "; ".join(skipped) + ".", ""]
+        lines += ["Runs that did not finish: " + "; ".join(skipped) + ".", ""]
     for scene, codes in results.items():
         lines += [f"## {scene}", "", "| target RMS error | mimpact (s) | LAMMPS (s) | LAMMPS / mimpact |",
                   "|---|---|---|---|"]

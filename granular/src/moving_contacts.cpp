@@ -137,6 +137,11 @@ double MovingContacts::advance(double target) {
   while (time_ < target && !ended()) {
     double end = std::min(target, time_ + window_);
     if (loaded_ids_.empty()) end = std::min(target, std::max(end, next_meeting(target)));
+    if (!(end > time_))
+      throw Error("moving contacts: a window of " + to_text(window_) +
+                  " s no longer moves t = " + to_text(time_) +
+                  " s in double precision; the contacts' time scale is below what the run's "
+                  "length resolves (check the speeds and stiffnesses, or end_time)");
     run_window(end);
   }
   return time_;

@@ -247,6 +247,7 @@ void MovingContacts::Group::measure(double t, Samples& samples) {
 // the compliant integrator), or an elastic contact's compression ending (its peak force);
 // located by TOMS 748.
 bool MovingContacts::Group::next_event(double a, double b, Event& event) {
+  if (watched_.empty() && scanned_.empty()) return false;  // elastic contacts among members only
   const numerics::OdeOptions& ode = world_.options_.ode;
   const plugins::internal::Overlaps overlaps{.join = world_.options_.overlap_resolution,
                                              .leave = 0.5 * world_.options_.overlap_resolution};
