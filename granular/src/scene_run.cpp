@@ -9,6 +9,10 @@ namespace mimpact::granular {
 
 namespace {
 
+// The impulse steps state no accuracy of their own (first order in delta_p): unless the scene
+// says otherwise, their configuration check warns above this share of the striker's speed.
+constexpr double kImpulseStepAccuracy = 1e-3;
+
 // Hands every sample to several observers.
 class Observers : public numerics::ImpactObserver {
  public:
@@ -62,8 +66,17 @@ SceneRun run_scene(const ContactModel& model,
                                          !spec.record.bodies.empty() || spec.frame_every > 0);
   const plugins::LzbImpactOptions impact =
       resolve_impact(spec.impact, spec.method, options.impact, spec.source);
-  if (spec.method == Method::lzb)
-    return run_lzb(model, std::move(system), spec, options, impact, record);
+  if (spec.method == Method::lzb) {
+    SceneRun run = run_lzb(model, std::move(system), spec, options, impact, record);
+    const ConfigurationCheckSpec* check = spec.configuration_check;
+    if (check && check->enabled && model.beads) {
+      const double accuracy = impact.chosen_integrator() == plugins::LzbIntegrator::adaptive
+                                  ? impact.adaptive_tolerance()
+                                  : kImpulseStepAccuracy;
+      run.configuration = check_configuration(model, run.impact, *check, accuracy, options.limits);
+    }
+    return run;
+  }
   CompliantRun compliant = simulate_compliant(model, std::move(system), spec.compliant,
                                               record ? spec.record : RecordSpec{},
                                               record ? spec.frame_every : 0, options.limits);

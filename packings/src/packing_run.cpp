@@ -91,6 +91,19 @@ Eigen::Index contacts_reached(const granular::ImpactOutcome& impact) {
   return Eigen::Index((impact.result.max_force.array() > 0.0).count());
 }
 
+nlohmann::ordered_json configuration_json(
+    const std::optional<granular::ConfigurationCheck>& check) {
+  if (!check) return nullptr;
+  return {{"time", check->time},
+          {"tolerance", check->tolerance},
+          {"accuracy", check->accuracy},
+          {"rms_error", check->rms_error},
+          {"worst_error", check->worst_error},
+          {"worst_body", check->worst_body},
+          {"holds", check->holds()},
+          {"wall_time", check->wall_time}};
+}
+
 granular::TimeSeries frame_table(const granular::Frames& frames, bool forces, int dimension) {
   granular::TimeSeries table;
   table.time = frames.time;
@@ -115,7 +128,8 @@ granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingMod
                               .compliant = scene.compliant,
                               .record = scene.run_record(),
                               .frame_every = scene.record.frames,
-                              .source = scene.source},
+                              .source = scene.source,
+                              .configuration_check = &scene.configuration_check},
                              options);
 }
 
@@ -170,6 +184,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
         {"after", components(momentum(model, after))}}},
       {"energy", granular::ledger_json(granular::energy_ledger(model, impact))},
       {"wall_time", impact.wall_time},
+      {"configuration_check", configuration_json(run.configuration)},
       {"contacts", contacts}};
   return summary;
 }
@@ -204,6 +219,8 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
       bracketed(momentum(model, model.velocity), "%.9g").c_str(),
       bracketed(momentum(model, impact.velocity_after), "%.9g").c_str(), (long long)fastest,
       bracketed(model.of(impact.velocity_after, fastest), "%.6g").c_str());
+  if (run.configuration && run.configuration->holds())  // else a warning (packing_command.cpp)
+    return text + run.configuration->describe() + "\n";
   return text;
 }
 

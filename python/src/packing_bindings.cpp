@@ -83,6 +83,10 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
     run = packings::run_packing_scene(scene, model, options);
     summary = packings::packing_summary(scene, model, run);
   }
+  // the scene needs the moving geometry: a warning, as from the command line
+  if (run.configuration && !run.configuration->holds() &&
+      PyErr_WarnEx(PyExc_UserWarning, run.configuration->describe().c_str(), 1) < 0)
+    throw py::error_already_set();
   const granular::ImpactOutcome& impact = run.impact;
   PackingResult result;
   result.fill(run, summary);

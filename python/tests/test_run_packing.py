@@ -2,6 +2,7 @@
 
 import json
 import subprocess
+import warnings
 
 import numpy as np
 import pytest
@@ -25,6 +26,20 @@ def test_run_packing_gives_the_command_lines_velocities(cli, tmp_path):
     momentum = result.body_impulses.sum(axis=0)
     np.testing.assert_allclose(momentum, 0.0, atol=1e-15)
     assert result.frames["velocities"].shape[1:] == (101, 2)
+
+
+def test_the_frozen_configuration_is_told():
+    """Issue 24, item e: an LZB run of beads warns that its configuration of the impact is 5 % of
+    V from the beads as they move, as the command line does; a scene may skip the check."""
+    with pytest.warns(UserWarning, match='the scene needs "method": "compliant"'):
+        result = mimpact.run_packing(SOURCE / HEXAGON)
+    check = result.summary["configuration_check"]
+    assert not check["holds"] and check["worst_error"] > 1e-2
+    scene = read_scene(HEXAGON)
+    scene["configuration_check"] = {"enabled": False}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert mimpact.run_packing(scene).summary["configuration_check"] is None
 
 
 def test_a_dict_scene_and_delta_p(tmp_path):

@@ -557,6 +557,17 @@ TEST(PackingCommand, OutWritesSummaryGeometryAndFrames) {
   for (const char* name :
        {"bodies.csv", "contacts.csv", "frame_forces.csv", "frame_velocities.csv"})
     EXPECT_TRUE(fs::exists(out / name)) << name;
+  // issue 24, item e: the LZB run tells that its frozen configuration is 5 % of V from the beads
+  // as they move, far beyond its tolerance (tests/packings/test_configuration_check.cpp)
+  const auto& check = summary["configuration_check"];
+  EXPECT_FALSE(check["holds"].get<bool>());
+  EXPECT_GT(check["worst_error"].get<double>(), 1e-2);
+  EXPECT_NE(run.err.find("warning: the LZB impact keeps the configuration of the impact"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("the scene needs \"method\": \"compliant\""), std::string::npos);
+  const CliRun quiet = mimpact("packing " + scene("packings/hexagonal_10x10.json") + " --quiet");
+  EXPECT_NE(quiet.err.find("warning: the LZB impact"), std::string::npos) << quiet.err;
   fs::remove_all(out);
 }
 

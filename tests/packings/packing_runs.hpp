@@ -2,7 +2,12 @@
 
 // Planar packing scenes written in the tests, and their runs.
 
+#include <Eigen/Dense>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "mimpact/packings/packing_run.hpp"
 
@@ -37,6 +42,23 @@ inline PackingCase run_packing(const std::string& text,
   result.model = packings::build_packing_model(result.scene);
   result.run = packings::run_packing_scene(result.scene, result.model);
   return result;
+}
+
+// The planar velocities (m/s, a row per body) of a LAMMPS run vendored in tests/data/lammps/
+// (its README says how each was made).
+inline Eigen::MatrixX2d lammps_velocities(const std::string& name) {
+  std::ifstream file(std::string(MIMPACT_SOURCE_DIR) + "/tests/data/lammps/" + name);
+  std::string line;
+  std::getline(file, line);  // vx,vy,vz
+  std::vector<double> values;
+  double vx, vy;
+  while (std::getline(file, line)) {
+    if (std::sscanf(line.c_str(), "%lf,%lf", &vx, &vy) != 2)
+      throw std::runtime_error(name + ": not vx,vy,vz: " + line);
+    values.insert(values.end(), {vx, vy});
+  }
+  return Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
+      values.data(), Eigen::Index(values.size() / 2), 2);
 }
 
 }  // namespace mimpact::testing

@@ -86,19 +86,12 @@ TEST(PackingConvergence, OpenGapsPartFromTheLzbImpact) {
 TEST(PackingConvergence, MovingGeometryAgreesWithLammps) {
   const PackingCase moving = run_packing(struck_hexagon(
       R"("method": "compliant", "compliant": {"tolerance": 1e-11, "end_time": 3e-4})"));
-  std::ifstream lammps(std::string(MIMPACT_SOURCE_DIR) +
-                       "/tests/data/lammps/hexagonal_10x10_v_at_0.3ms.csv");
-  std::string line;
-  std::getline(lammps, line);  // vx,vy,vz
+  const Eigen::MatrixX2d lammps = lammps_velocities("hexagonal_10x10_v_at_0.3ms.csv");
+  ASSERT_EQ(lammps.rows(), moving.model.body_count());
   const Eigen::VectorXd& v = moving.run.impact.velocity_after;
-  Eigen::Index body = 0;
   double worst = 0.0;
-  for (; std::getline(lammps, line); ++body) {
-    double vx, vy;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf", &vx, &vy), 2);
-    worst = std::max(worst, std::hypot(v(2 * body) - vx, v(2 * body + 1) - vy));
-  }
-  EXPECT_EQ(body, moving.model.body_count());
+  for (Eigen::Index body = 0; body < lammps.rows(); ++body)
+    worst = std::max(worst, (v.segment<2>(2 * body) - lammps.row(body).transpose()).norm());
   std::printf("moving geometry against LAMMPS: worst body %.3e m/s\n", worst);
   EXPECT_LT(worst, 1e-8);
 }

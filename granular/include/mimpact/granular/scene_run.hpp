@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "mimpact/granular/configuration_check.hpp"
 #include "mimpact/granular/contact_model.hpp"
 #include "mimpact/granular/impact_outcome.hpp"
 #include "mimpact/granular/run_limits.hpp"
@@ -37,6 +38,8 @@ struct SceneRunSpec {
   RecordSpec record;          // the contacts and bodies sampled
   int frame_every = 0;        // every this many samples, a frame of the whole scene (0: none)
   const std::string& source;  // the scene file, for messages
+  // an LZB run of beads (model.beads) compares its frozen configuration with the moving geometry
+  const ConfigurationCheckSpec* configuration_check = nullptr;
 };
 
 struct SceneRun {
@@ -47,13 +50,16 @@ struct SceneRun {
   bool recorded = false;              // series (and frames, if asked for) hold the scene's record
   TimeSeries series;
   Frames frames;
+  // the LZB run's frozen configuration against the beads as they move, when it was checked
+  std::optional<ConfigurationCheck> configuration;
 };
 
 // The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
 // event-driven scheme, or the compliant contacts integrated in time, as the scene says, on
-// `system` (body b is the model's body b). Throws InvalidInput for a missing or out-of-range
-// delta_p, a delta_p given to another method or alongside relative_delta_p, and a recording
-// beyond options.limits.
+// `system` (body b is the model's body b). An LZB run of beads is then checked against the
+// moving geometry as spec.configuration_check says. Throws InvalidInput for a missing or
+// out-of-range delta_p, a delta_p given to another method or alongside relative_delta_p, and a
+// recording beyond options.limits.
 SceneRun run_scene(const ContactModel& model,
                    std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                    const SceneRunSpec& spec, const SceneRunOptions& options = {});

@@ -30,7 +30,8 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
                                        const granular::SceneRun& run);
 
 // A few lines for people: sizes, method, steps and contacts per step, energy and momentum, the
-// fastest bodies after the impact.
+// fastest bodies after the impact, and an LZB run's configuration check when it holds (when it
+// does not, the caller warns with ConfigurationCheck::describe()).
 std::string packing_report(const PackingScene& scene, const PackingModel& model,
                            const granular::SceneRun& run);
 

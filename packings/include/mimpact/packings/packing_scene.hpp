@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mimpact/common/fields.hpp"
+#include "mimpact/granular/configuration_check.hpp"
 #include "mimpact/granular/hertz.hpp"
 #include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/kernel/parameters.hpp"
@@ -157,6 +158,8 @@ struct PackingScene {
   RecordSpec record;
   granular::Method method = granular::Method::lzb;
   granular::CompliantSpec compliant;
+  // an LZB run against the moving geometry (docs/packings.md)
+  granular::ConfigurationCheckSpec configuration_check;
   std::filesystem::path directory;  // of the scene file: bead lists are found from it
   std::string source = "scene";     // the file it was read from, for messages
 
@@ -172,6 +175,7 @@ struct PackingScene {
     field("record", self.record);
     field("method", self.method);
     field("compliant", self.compliant);
+    field("configuration_check", self.configuration_check);
   }
 
   bool adaptive() const {

@@ -1,0 +1,74 @@
+#include "mimpact/granular/configuration_check.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "mimpact/common/error.hpp"
+#include "mimpact/granular/scene_spec.hpp"
+
+namespace mimpact::granular {
+
+namespace {
+
+std::string short_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+}  // namespace
+
+std::string ConfigurationCheck::describe() const {
+  std::string line =
+      "the LZB impact keeps the configuration of the impact; the beads as they move "
+      "(compliant contacts in the moving geometry, tolerance " +
+      short_text(tolerance) + ") differ from it at t = " + short_text(time) + " s by RMS " +
+      short_text(rms_error) + " and at worst " + short_text(worst_error) + " (body " +
+      std::to_string(worst_body) + ") of the striker's speed";
+  if (holds()) return line + ", within the accuracy " + short_text(accuracy);
+  line += ", beyond the accuracy " + short_text(accuracy) +
+          " (configuration_check.accuracy): the scene needs \"method\": \"compliant\", which "
+          "follows the beads as they move";
+  return line;
+}
+
+ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOutcome& lzb,
+                                       const ConfigurationCheckSpec& spec, double default_accuracy,
+                                       const RunLimits& limits) {
+  if (!model.beads) throw Error("configuration check: the model has no beads to move");
+  ConfigurationCheck check;
+  check.accuracy = spec.accuracy.value_or(default_accuracy);
+  check.tolerance = spec.tolerance.value_or(std::clamp(1e-2 * check.accuracy, 1e-8, 1e-4));
+  check.time = lzb.impact_time + lzb.result.duration;
+  const int d = model.dimension;
+  const Eigen::Index bodies = model.body_count();
+  for (Eigen::Index b = 0; b < bodies; ++b)
+    check.speed = std::max(check.speed, model.velocity.segment(b * d, d).norm());
+
+  CompliantSpec moving;
+  moving.tolerance = check.tolerance;
+  moving.end_time = check.time;
+  moving.geometry = Geometry::moving;
+  const auto start = std::chrono::steady_clock::now();
+  const CompliantRun run = simulate_compliant(model, nullptr, moving, {}, 0, limits);
+  check.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  double squares = 0.0;
+  for (Eigen::Index b = 0; b < bodies; ++b) {
+    const double difference =
+        (lzb.velocity_after.segment(b * d, d) - run.impact.velocity_after.segment(b * d, d))
+            .norm() /
+        check.speed;
+    squares += difference * difference;
+    if (difference > check.worst_error) {
+      check.worst_error = difference;
+      check.worst_body = b;
+    }
+  }
+  check.rms_error = std::sqrt(squares / double(bodies));
+  return check;
+}
+
+}  // namespace mimpact::granular
