@@ -40,7 +40,7 @@ ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOu
   if (!model.beads) throw Error("configuration check: the model has no beads to move");
   ConfigurationCheck check;
   check.accuracy = spec.accuracy.value_or(default_accuracy);
-  check.tolerance = spec.tolerance.value_or(std::clamp(1e-2 * check.accuracy, 1e-8, 1e-4));
+  check.tolerance = spec.tolerance.value_or(std::clamp(1e-2 * check.accuracy, 1e-10, 1e-4));
   check.time = lzb.impact_time + lzb.result.duration;
   const int d = model.dimension;
   const Eigen::Index bodies = model.body_count();

@@ -81,6 +81,8 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
   // no body leaves its list's ball within a window
   window_ = std::min(0.5 * overlap / closing, 0.25 * lists_.skin() / speed_bound_);
   first_step_ = 1e-3 * overlap / closing;
+  time_scale_ = overlap / closing;
+  mass_scale_ = geometry.mass.minCoeff();
 }
 
 MovingContacts::~MovingContacts() = default;

@@ -129,7 +129,8 @@ void MovingContacts::Group::restart(double t) {
   }
   y_.assign(2 * std::size_t(d) * n + active_.size(), 0.0);
   for (std::size_t m = 0; m < n; ++m)
-    for (int k = 0; k < d; ++k) y_[d * (n + m) + std::size_t(k)] = velocity_[m](k);
+    for (int k = 0; k < d; ++k)
+      y_[d * (n + m) + std::size_t(k)] = world_.time_scale_ * velocity_[m](k);
   for (Samples* s : {&before_, &after_}) {
     s->gap.resize(watched_.size() + scanned_.size());
     s->rate.resize(s->gap.size());
@@ -152,19 +153,23 @@ void MovingContacts::Group::member_state(std::size_t slot, const double* y, Eige
                                          Eigen::Vector3d& v) const {
   const int d = dimension_;
   x = origin_[slot] + read(y + d * slot, d);
-  v = read(y + d * (members_.size() + slot), d);
+  v = read(y + d * (members_.size() + slot), d) / world_.time_scale_;
 }
 
 void MovingContacts::Group::rhs(const double* y, double* dydt) {
   const int d = dimension_;
   const std::size_t velocities = std::size_t(d) * members_.size();
-  std::copy(y + velocities, y + 2 * velocities, dydt);
+  // in the state's units: x' = w / T, w' = T a, q' = T F / m (moving_contacts.hpp)
+  const double time_scale = world_.time_scale_;
+  const double impulse_rate = time_scale / world_.mass_scale_;
+  for (std::size_t i = 0; i < velocities; ++i) dydt[i] = y[velocities + i] / time_scale;
   std::fill(dydt + velocities, dydt + 2 * velocities, 0.0);
   for (std::int32_t index : active_) {
     const Contact& c = contacts_[std::size_t(index)];
     const std::size_t a = std::size_t(c.first);
     const Eigen::Vector3d xa = origin_[a] + read(y + d * a, d);
-    const double inverse_mass_a = world_.bodies_[std::size_t(c.first_body)].inverse_mass;
+    const double inverse_mass_a =
+        time_scale * world_.bodies_[std::size_t(c.first_body)].inverse_mass;
     double force;
     if (c.second >= 0) {
       const std::size_t b = std::size_t(c.second);
@@ -175,7 +180,7 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
         const Eigen::Vector3d push = (force / distance) * between;
         add(dydt + velocities + d * a, -inverse_mass_a * push, d);
         add(dydt + velocities + d * b,
-            world_.bodies_[std::size_t(c.second_body)].inverse_mass * push, d);
+            time_scale * world_.bodies_[std::size_t(c.second_body)].inverse_mass * push, d);
       }
     } else {
       const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
@@ -183,7 +188,7 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
                                          c.max_compression);
       if (force != 0.0) add(dydt + velocities + d * a, inverse_mass_a * force * wall.normal, d);
     }
-    dydt[2 * velocities + std::size_t(c.slot)] = force;
+    dydt[2 * velocities + std::size_t(c.slot)] = impulse_rate * force;
   }
 }
 
@@ -310,7 +315,8 @@ void MovingContacts::Group::move_to(double t) {
   for (std::size_t m = 0; m < n; ++m) member_state(m, y_.data(), position_[m], velocity_[m]);
   for (std::int32_t index : active_) {
     Contact& c = contacts_[std::size_t(index)];
-    c.impulse += y_[2 * std::size_t(d) * n + std::size_t(c.slot)];
+    c.impulse +=
+        y_[2 * std::size_t(d) * n + std::size_t(c.slot)] * world_.mass_scale_ / world_.time_scale_;
     double gap, rate;
     contact_gap(c, y_.data(), gap, rate);
     c.compression = -gap;

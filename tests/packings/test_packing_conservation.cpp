@@ -170,7 +170,7 @@ TEST(PackingConservation, ThreeDimensionalLatticesKeepMomentumAndEnergy) {
 // without a mirror left out: a bead list), struck at its bottom middle bead obliquely in that
 // plane: mirror to round-off, in the frozen and the moving geometry. The moving geometry's groups
 // sum mirror forces in different orders over its thousands of steps, and the wake's collisions
-// amplify that round-off: measured 3.9e-12 m/s (3.9e-16 for the LZB impact).
+// amplify that round-off: measured 6.5e-13 m/s (4.7e-16 for the LZB impact).
 TEST(PackingConservation, SymmetricStrikeInSpaceGivesAMirrorResult) {
   const double a = 0.005, plane = 4 * a;
   const packings::PackingModel hcp = packings::build_packing_model(packings::parse_packing_scene(

@@ -20,7 +20,7 @@ namespace mimpact::granular {
 // The scene's "configuration_check".
 struct ConfigurationCheckSpec {
   bool enabled = true;
-  // the moving geometry's tolerance; default: the accuracy / 100, within [1e-8, 1e-4]
+  // the moving geometry's tolerance; default: the accuracy / 100, within [1e-10, 1e-4]
   std::optional<double> tolerance;
   // the velocity difference, relative to the fastest body before the impact, above which the
   // run warns; default: the adaptive LZB's tolerance, or 1e-3 for the impulse steps

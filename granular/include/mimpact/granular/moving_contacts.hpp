@@ -17,7 +17,9 @@ namespace mimpact::granular {
 
 struct MovingContactsOptions {
   // the integration of each group: Dormand-Prince 5(4) to these tolerances (positions to
-  // absolute_tolerance m, velocities to absolute_tolerance / s), events to event_tolerance s
+  // absolute_tolerance m, velocities to absolute_tolerance / T m/s and impulses to
+  // absolute_tolerance m / T N s, with T the quickest contact's overlap over its closing speed
+  // and m the lightest mass), events to event_tolerance s
   numerics::OdeOptions ode{.absolute_tolerance = 1e-17,
                            .relative_tolerance = 1e-10,
                            .event_tolerance = 1e-13,
@@ -135,6 +137,12 @@ class MovingContacts {
   double speed_bound_ = 0.0;  // m/s: no body moves faster (the energy is all it can have)
   double window_ = 0.0;       // s
   double first_step_ = 0.0;   // s, of a group that starts from nothing
+  // The units of a group's state (docs/model.md, section 17): velocities are integrated as
+  // time_scale_ v (m) and impulses as time_scale_ p / mass_scale_ (m), so that one absolute
+  // tolerance weighs a position, a velocity and an impulse alike at the quickest contact's
+  // scales (its overlap, closing speed and lightest mass).
+  double time_scale_ = 0.0;  // s: the quickest contact's overlap / its closing speed
+  double mass_scale_ = 0.0;  // kg: the lightest body
   MovingContactsStats stats_;
 };
 
