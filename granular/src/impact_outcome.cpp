@@ -240,7 +240,15 @@ CompliantRun simulate_moving(const ContactModel& model, const CompliantSpec& spe
   options.ode.relative_tolerance = tolerances.relative;
   options.ode.absolute_tolerance = tolerances.absolute;
   options.ode.event_tolerance = 1e-13;
-  options.overlap_resolution = tolerances.resolution;
+  // A contact left out below an overlap r for a window (a quarter of a contact's duration)
+  // changes the velocities by about (r / overlap)^eta V / 4: the moving geometry resolves
+  // overlaps down to (1e-2 tolerance)^(1 / eta) of the impact's, so that this stays under the
+  // error the tolerance allows (at 1e-4: RMS 4.4e-5 on 32 x 32, from 3.5e-4 with the frozen
+  // integrator's resolution, for the same time).
+  options.overlap_resolution =
+      std::max(kOverlapResolution,
+               std::pow(1e-2 * tolerances.relative, 1.0 / model.laws.front().exponent)) *
+      overlap_scale(model);
   options.max_steps = spec.max_steps;
   const int d = model.dimension;
   std::vector<Eigen::Vector3d> velocity(std::size_t(model.body_count()), Eigen::Vector3d::Zero());
