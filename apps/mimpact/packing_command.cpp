@@ -40,7 +40,8 @@ int packing_command(const std::vector<std::string>& arguments) {
   std::string scene_file, out_dir;
   granular::RunLimits limits;
   po::options_description visible(
-      "mimpact packing SCENE.json: the multiple impact of a planar packing of beads");
+      "mimpact packing SCENE.json: the multiple impact of a packing of beads, in the plane or in "
+      "space");
   visible.add_options()(
       "out", po::value(&out_dir),
       "write summary.json, bodies.csv, contacts.csv and the recorded series and frames into this "

@@ -79,8 +79,8 @@ class MovingContacts::Group {
     double compression = 0.0, force = 0.0;  // m, N: at the last move
     double impulse = 0.0;                   // N s, until the last restart
     double max_force = 0.0, time_of_max_force = 0.0, dissipated = 0.0;
-    std::int32_t slot = -1;  // of its impulse in the state, while in the right-hand side
-    double rate = 0.0;       // elastic: m/s, at the end of the last segment tracked
+    std::int32_t slot = -1;        // of its impulse in the state, while in the right-hand side
+    double gap = 0.0, rate = 0.0;  // elastic: m, m/s, at the end of the last segment tracked
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
@@ -103,6 +103,7 @@ class MovingContacts::Group {
   // the contact of the two (a body and -1 - wall), as the world last committed it or new
   std::int32_t find_contact(std::int32_t first_body, std::int32_t second_body);
   void restart(double t);
+  double first_step() const;  // s, of the integration restarted
   void rhs(const double* y, double* dydt);
   // a member's position (m) and velocity (m/s) along the state y
   void member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
@@ -118,6 +119,9 @@ class MovingContacts::Group {
   // the elastic contacts' largest forces over [t0, t1] of the current step: at t1, or where
   // their compression ends (located, without a restart: the force is smooth there)
   void track_peaks(double t0, double t1);
+  // where contact c's compression ends in [t0, t1] (its rate c.rate at t0, `rate` at t1): its
+  // largest overlap (m) and when (s)
+  std::pair<double, double> peak(const Contact& c, double t0, double t1, double gap, double rate);
   void take_step();
 
   MovingContacts& world_;
