@@ -56,14 +56,31 @@ def parse(out):
 
 
 def time_at(rows, target):
-    """The time (s) a code needs for an RMS error of `target`: interpolated log-log between
-    the two runs that bracket it; None when no run reaches it."""
+    """The time (s) a code needs for an RMS error of `target`, and whether it is a bound:
+    interpolated log-log between the two runs that bracket it; when even the code's cheapest
+    run is more accurate, that run's time bounds it (True); None when no run reaches it."""
     points = sorted((r["rms"], r["seconds"]) for r in rows if r["rms"] > 0)
+    if not points:
+        return None, False
     for (e1, t1), (e2, t2) in zip(points, points[1:]):
         if e1 <= target <= e2:
             w = (math.log(target) - math.log(e1)) / (math.log(e2) - math.log(e1))
-            return math.exp(math.log(t1) + w * (math.log(t2) - math.log(t1)))
-    return None
+            return math.exp(math.log(t1) + w * (math.log(t2) - math.log(t1))), False
+    if target > points[-1][0]:
+        return min(t for _, t in points), True
+    return None, False
+
+
+def shown_time(time, bound):
+    if time is None:
+        return "not reached"
+    return ("≤ " if bound else "") + f"{time:.3g}"
+
+
+def shown_ratio(m, m_bound, lammps, lammps_bound):
+    if m is None or lammps is None or (m_bound and lammps_bound):
+        return "—"
+    return ("≥ " if m_bound else "≤ " if lammps_bound else "") + f"{lammps / m:.2f}"
 
 
 def figure(results, png):
@@ -104,11 +121,11 @@ def page(context, results, skipped, png, command):
         lines += [f"## {scene}", "", "| target RMS error | mimpact (s) | LAMMPS (s) | LAMMPS / mimpact |",
                   "|---|---|---|---|"]
         for target in TARGETS:
-            m = time_at(codes.get("Mimpact", []), target)
-            lammps = time_at(codes.get("Lammps", []), target)
-            shown = [f"{t:.3g}" if t else "not reached" for t in (m, lammps)]
-            ratio = f"{lammps / m:.2f}" if m and lammps else "—"
-            lines.append(f"| {target:g} | {shown[0]} | {shown[1]} | {ratio} |")
+            m, m_bound = time_at(codes.get("Mimpact", []), target)
+            lammps, lammps_bound = time_at(codes.get("Lammps", []), target)
+            lines.append(f"| {target:g} | {shown_time(m, m_bound)} | "
+                         f"{shown_time(lammps, lammps_bound)} | "
+                         f"{shown_ratio(m, m_bound, lammps, lammps_bound)} |")
         lines += ["", "| code | setting | time (s) | RMS error | worst bead |", "|---|---|---|---|---|"]
         for code, rows in codes.items():
             for r in sorted(rows, key=lambda r: r["seconds"]):
