@@ -21,6 +21,10 @@ std::string short_text(double value) {
 }  // namespace
 
 std::string ConfigurationCheck::describe() const {
+  if (!not_made.empty())
+    return "the LZB impact keeps the configuration of the impact, and its check against the "
+           "beads as they move could not be made: " +
+           not_made;
   std::string line =
       "the LZB impact keeps the configuration of the impact; the beads as they move "
       "(compliant contacts in the moving geometry, tolerance " +
@@ -52,7 +56,13 @@ ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOu
   moving.end_time = check.time;
   moving.geometry = Geometry::moving;
   const auto start = std::chrono::steady_clock::now();
-  const CompliantRun run = simulate_compliant(model, nullptr, moving, {}, 0, limits);
+  CompliantRun run;
+  try {
+    run = simulate_compliant(model, nullptr, moving, {}, 0, limits);
+  } catch (const Error& error) {
+    check.not_made = error.what();
+    return check;
+  }
   check.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   double squares = 0.0;

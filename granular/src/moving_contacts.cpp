@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "mimpact/common/error.hpp"
@@ -14,6 +15,10 @@
 namespace mimpact::granular {
 
 namespace {
+
+// An overlap must span this many rounding errors of the coordinates it is the difference of
+// (three significant digits).
+constexpr double kResolvedOverlap = 1e3;
 
 // Union-find over small integers, for the groups' components.
 class Components {
@@ -80,6 +85,20 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
   // a contact lasts about 3 overlap / closing speed (2.94 for Hertz): a quarter of that, and
   // no body leaves its list's ball within a window
   window_ = std::min(0.5 * overlap / closing, 0.25 * lists_.skin() / speed_bound_);
+  // the gaps are differences of coordinates: their rounding must leave the overlaps digits
+  double largest_coordinate = 0.0;
+  for (const Eigen::Vector3d& x : geometry.position)
+    largest_coordinate = std::max(largest_coordinate, x.cwiseAbs().maxCoeff());
+  for (const Plane& wall : geometry.walls)
+    largest_coordinate = std::max(largest_coordinate, wall.point.cwiseAbs().maxCoeff());
+  const double rounding = largest_coordinate * std::numeric_limits<double>::epsilon();
+  if (!(overlap > kResolvedOverlap * rounding))
+    throw Error("moving contacts: the impact's overlaps, about " + to_text(overlap) +
+                " m, are within " + to_text(kResolvedOverlap) +
+                " rounding errors of the bodies' coordinates (up to " +
+                to_text(largest_coordinate) +
+                " m): double precision cannot resolve them where the bodies are; the frozen "
+                "geometry (compliant.geometry \"frozen\") or the LZB impact can");
   first_step_ = 1e-3 * overlap / closing;
   time_scale_ = overlap / closing;
   mass_scale_ = geometry.mass.minCoeff();

@@ -94,6 +94,8 @@ Eigen::Index contacts_reached(const granular::ImpactOutcome& impact) {
 nlohmann::ordered_json configuration_json(
     const std::optional<granular::ConfigurationCheck>& check) {
   if (!check) return nullptr;
+  if (!check->not_made.empty())
+    return {{"holds", false}, {"not_made", check->not_made}, {"time", check->time}};
   return {{"time", check->time},
           {"tolerance", check->tolerance},
           {"accuracy", check->accuracy},

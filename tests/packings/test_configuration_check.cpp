@@ -75,6 +75,25 @@ TEST(ConfigurationCheck, HoldsWhereNoContactTurnsOrReopens) {
   EXPECT_LT(check.worst_error, 1e-8);
 }
 
+// Where the moving geometry cannot run, the LZB run stands and its check says why: a wall
+// 1e12 m away puts the coordinates' rounding (1e-4 m) above the impact's overlaps (1e-5 m).
+TEST(ConfigurationCheck, NotMadeWhereTheMovingGeometryCannotRun) {
+  const PackingCase far =
+      run_packing(lattice_scene("hexagonal", 4, 4, "[0, 2]", "[0.0, 1.0]",
+                                R"("walls": [{"point": [0, -1e12], "normal": [0, 1]}],
+         "impact": {"integrator": "adaptive", "tolerance": 1e-8})"));
+  const PackingCase near =
+      run_packing(lattice_scene("hexagonal", 4, 4, "[0, 2]", "[0.0, 1.0]",
+                                R"("impact": {"integrator": "adaptive", "tolerance": 1e-8})"));
+  const granular::ConfigurationCheck& check = *far.run.configuration;
+  EXPECT_NE(check.not_made.find("double precision cannot resolve them"), std::string::npos)
+      << check.not_made;
+  EXPECT_FALSE(check.holds());
+  EXPECT_NE(check.describe().find("could not be made"), std::string::npos);
+  EXPECT_EQ(far.run.impact.velocity_after, near.run.impact.velocity_after);  // the LZB run stands
+  EXPECT_TRUE(near.run.configuration->not_made.empty());
+}
+
 // The check is the scene's to skip, and only LZB runs of beads make it.
 TEST(ConfigurationCheck, SkippedWhenDisabledOrCompliant) {
   EXPECT_FALSE(lzb_hexagon("[0.0, 1.0]", R"(, "configuration_check": {"enabled": false})")
