@@ -66,6 +66,7 @@ struct Run {
   packings::PackingModel model;
   Eigen::VectorXd velocity;  // per coordinate, at the end time
   std::int64_t steps = 0;
+  granular::MovingContactsStats work;
 };
 
 Run run_mimpact(const Scene& scene, double tolerance) {
@@ -75,6 +76,7 @@ Run run_mimpact(const Scene& scene, double tolerance) {
   const granular::SceneRun outcome = packings::run_packing_scene(parsed, run.model);
   run.velocity = outcome.impact.velocity_after;
   run.steps = outcome.impact.result.steps;
+  run.work = outcome.moving;
   return run;
 }
 
@@ -109,6 +111,11 @@ void BM_PackingMimpact(benchmark::State& state, int scene, int exponent) {
   for (auto _ : state) run = run_mimpact(kScenes[scene], tolerance);
   set_errors(state, run.model, run.velocity, truth.velocity);
   state.counters["steps"] = double(run.steps);
+  // what the cost is to follow (issue 24, item c): the contacts that carried force and the run's
+  // length, and the steps its bodies took
+  state.counters["contacts_loaded"] = double(run.work.contacts_loaded);
+  state.counters["body_steps"] = double(run.work.member_steps);
+  state.counters["duration"] = kScenes[scene].end_time;
   state.SetLabel(kScenes[scene].name);
 }
 

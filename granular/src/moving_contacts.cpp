@@ -60,7 +60,8 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
     : geometry_(geometry),
       options_((validate(options, "moving contacts"), options)),
       lists_(geometry, options.skin > 0.0 ? options.skin : 0.2 * geometry.radius.minCoeff()),
-      bodies_(std::size_t(geometry.body_count())) {
+      bodies_(std::size_t(geometry.body_count())),
+      contacts_of_(bodies_.size()) {
   double energy = 0.0;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     bodies_[b].x = geometry.position[b];
@@ -106,18 +107,26 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
 
 MovingContacts::~MovingContacts() = default;
 
+std::int32_t MovingContacts::find_contact_id(std::int32_t first, std::int32_t second) const {
+  if (second >= 0 && second < first) std::swap(first, second);
+  for (const auto& [other, id] : contacts_of_[std::size_t(first)])
+    if (other == second) return id;
+  return -1;
+}
+
 std::int32_t MovingContacts::contact_id(std::int32_t first, std::int32_t second) {
   if (second >= 0 && second < first) std::swap(first, second);
-  const auto [found, added] = contact_ids_.emplace(contact_key(first, second), 0);
-  if (!added) return found->second;
+  const std::int32_t known = find_contact_id(first, second);
+  if (known >= 0) return known;
   MovingContact c;
   c.first = first;
   c.second = second;
   c.law = second >= 0 ? geometry_.bead_law(first, second)
                       : geometry_.wall_law(first, std::size_t(-1 - second));
-  found->second = std::int32_t(contacts_.size());
+  const std::int32_t id = std::int32_t(contacts_.size());
   contacts_.push_back(c);
-  return found->second;
+  contacts_of_[std::size_t(first)].emplace_back(second, id);
+  return id;
 }
 
 Eigen::Vector3d MovingContacts::position(Eigen::Index body) const {
@@ -264,14 +273,9 @@ void MovingContacts::form_groups() {
       if (gap < 2.0 * (a.v.norm() + b.v.norm()) * window) components.join(a.slot, b.slot);
     }
   }
-  std::vector<std::vector<std::int32_t>> members(loaded_bodies.size()),
-      contacts(loaded_bodies.size());
+  std::vector<std::vector<std::int32_t>> members(loaded_bodies.size());
   for (std::int32_t i : loaded_bodies)
     members[std::size_t(components.find(bodies_[std::size_t(i)].slot))].push_back(i);
-  for (std::int32_t id : loaded_ids_)
-    contacts[std::size_t(
-                 components.find(bodies_[std::size_t(contacts_[std::size_t(id)].first)].slot))]
-        .push_back(id);
   // the halo: bodies flying freely (at rest, ahead of a front) that a group's body may touch
   // within the window join it from the start, so that the group does not restart to take them
   for (std::int32_t i : loaded_bodies) {
@@ -291,7 +295,7 @@ void MovingContacts::form_groups() {
   for (std::size_t c = 0; c < members.size(); ++c) {
     if (members[c].empty()) continue;
     groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
-    groups_.back()->begin(time_, members[c], contacts[c]);
+    groups_.back()->begin(time_, members[c]);
   }
 }
 
@@ -377,16 +381,9 @@ bool MovingContacts::merge_groups_that_met() {
       groups_[std::size_t(g)]->release();
       groups_[std::size_t(g)].reset();
     }
-    std::vector<std::int32_t> loaded;
-    for (std::int32_t body : members) bodies_[std::size_t(body)].owner = -2;  // marks the set
-    for (std::int32_t id : loaded_ids_) {
-      const MovingContact& c = contacts_[std::size_t(id)];
-      if (bodies_[std::size_t(c.first)].owner == -2) loaded.push_back(id);
-    }
-    for (std::int32_t body : members) bodies_[std::size_t(body)].owner = -1;
     stats_.redone_groups += std::int64_t(set.size());
     groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
-    groups_.back()->begin(start, members, loaded);
+    groups_.back()->begin(start, members);
   }
   return true;
 }

@@ -8,7 +8,6 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include "mimpact/granular/moving_contacts.hpp"
@@ -16,11 +15,6 @@
 #include "mimpact/plugins/internal/contact_events.hpp"
 
 namespace mimpact::granular {
-
-// The key of a contact: two bodies, the lower first, or a body and -1 - wall.
-inline std::uint64_t contact_key(std::int32_t first, std::int32_t second) {
-  return (std::uint64_t(std::uint32_t(first)) << 32) | std::uint64_t(std::uint32_t(second));
-}
 
 // A body between windows: where it is and how it moves.
 struct MovingContacts::Body {
@@ -40,10 +34,9 @@ class MovingContacts::Group {
  public:
   Group(MovingContacts& world, std::int32_t id) : world_(world), id_(id) {}
 
-  // Starts at `start` with `members` (which it owns from now) and the contacts `loaded`
-  // (ids of world contacts that carry force).
-  void begin(double start, const std::vector<std::int32_t>& members,
-             const std::vector<std::int32_t>& loaded);
+  // Starts at `start` with `members` (which it owns from now), their contacts as the world
+  // last committed them.
+  void begin(double start, const std::vector<std::int32_t>& members);
   // Starts at `start` with two bodies flying freely that meet there (second < 0: a wall).
   void begin_collision(double start, std::int32_t first, std::int32_t second);
   // Integrates to `end`, restarting at its own events.
@@ -101,7 +94,10 @@ class MovingContacts::Group {
 
   void add_member(std::int32_t body);
   // the contact of the two (a body and -1 - wall), as the world last committed it or new
-  std::int32_t find_contact(std::int32_t first_body, std::int32_t second_body);
+  void add_contact(std::int32_t first_body, std::int32_t second_body);
+  // the contacts of the members that joined since the last call with the other members and
+  // the walls
+  void pair_new_members();
   void restart(double t);
   double first_step() const;  // s, of the integration restarted
   void rhs(const double* y, double* dydt);
@@ -121,7 +117,8 @@ class MovingContacts::Group {
   void track_peaks(double t0, double t1);
   // where contact c's compression ends in [t0, t1] (its rate c.rate at t0, `rate` at t1): its
   // largest overlap (m) and when (s)
-  std::pair<double, double> peak(const Contact& c, double t0, double t1, double gap, double rate);
+  std::pair<double, double> peak(const Contact& c, double t0, double t1, double gap,
+                                 double rate) const;
   void take_step();
 
   MovingContacts& world_;
@@ -129,16 +126,16 @@ class MovingContacts::Group {
   int dimension_ = 2;
   double start_ = 0.0, time_ = 0.0;
   std::vector<std::int32_t> members_;
+  std::size_t paired_members_ = 0;  // members whose pairs with the others are in contacts_
   std::vector<Eigen::Vector3d> position_, velocity_;  // members', at time_ (after move_to)
   std::vector<Eigen::Vector3d> origin_;               // members' positions at the last restart
-  std::vector<Contact> contacts_;  // its members' contacts: every pair within reach
-  std::unordered_map<std::uint64_t, std::int32_t> local_ids_;  // contact_key -> contacts_
+  std::vector<Contact> contacts_;      // its members' contacts: every pair within reach
   std::vector<std::int32_t> active_;   // of contacts_: those in the right-hand side
   std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
   std::vector<std::int32_t> elastic_;  // of contacts_: the elastic, whose peaks are tracked
   std::vector<Watch> watched_;
   std::unique_ptr<numerics::internal::DenseOutput> dense_;
-  std::vector<double> y_, probe_, y_peak_;
+  std::vector<double> y_, probe_;
   Samples before_, after_, one_;
   double last_step_ = 0.0;
   bool fresh_ = true;  // restarted, no step taken since

@@ -85,6 +85,7 @@ SceneRun run_scene(const ContactModel& model,
   run.impact = std::move(compliant.impact);
   run.series = std::move(compliant.series);
   run.frames = std::move(compliant.frames);
+  run.moving = compliant.moving;
   run.recorded = record;
   return run;
 }

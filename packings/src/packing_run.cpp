@@ -106,6 +106,18 @@ nlohmann::ordered_json configuration_json(
           {"wall_time", check->wall_time}};
 }
 
+// The work of a compliant run in the moving geometry (docs/model.md, section 17), or null.
+nlohmann::ordered_json moving_json(const granular::MovingContactsStats& work) {
+  if (work.windows == 0) return nullptr;
+  return {{"body_steps", work.member_steps},
+          {"group_steps", work.steps},
+          {"windows", work.windows},
+          {"groups_integrated_again", work.redone_groups},
+          {"largest_group", work.largest_group},
+          {"most_bodies_in_motion", work.most_bodies_in_motion},
+          {"contacts_loaded", work.contacts_loaded}};
+}
+
 granular::TimeSeries frame_table(const granular::Frames& frames, bool forces, int dimension) {
   granular::TimeSeries table;
   table.time = frames.time;
@@ -187,6 +199,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"energy", granular::ledger_json(granular::energy_ledger(model, impact))},
       {"wall_time", impact.wall_time},
       {"configuration_check", configuration_json(run.configuration)},
+      {"moving_geometry", moving_json(run.moving)},
       {"contacts", contacts}};
   return summary;
 }

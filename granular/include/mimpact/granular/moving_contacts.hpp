@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include "mimpact/common/fields.hpp"
@@ -69,6 +68,7 @@ struct MovingContactsStats {
   std::int64_t most_bodies_in_motion = 0;
   std::int64_t largest_group = 0;
   std::int64_t list_refreshes = 0;
+  std::int64_t contacts_loaded = 0;  // contacts that have carried force
 };
 
 // The compliant contacts in the moving geometry (docs/model.md, section 17): beads and walls
@@ -122,7 +122,10 @@ class MovingContacts {
   bool merge_groups_that_met();
   double next_meeting(double target) const;
   void note_moving(std::int32_t body);
+  // the record of the contact of the two (a body and -1 - wall), made if there is none
   std::int32_t contact_id(std::int32_t first, std::int32_t second);
+  // the same, or -1 if there is none
+  std::int32_t find_contact_id(std::int32_t first, std::int32_t second) const;
 
   const BeadGeometry& geometry_;
   MovingContactsOptions options_;
@@ -130,7 +133,9 @@ class MovingContacts {
   std::vector<Body> bodies_;
   std::vector<std::int32_t> moving_;  // bodies that have moved: the only ones whose lists move
   std::vector<MovingContact> contacts_;
-  std::unordered_map<std::uint64_t, std::int32_t> contact_ids_;
+  // per body: (the other body or -1 - wall, record) of its recorded contacts with later bodies
+  // and walls (a bead has a dozen at most: a scan beats a hash)
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> contacts_of_;
   std::vector<std::int32_t> loaded_ids_;  // contacts carrying force now
   std::vector<std::unique_ptr<Group>> groups_;
   double time_ = 0.0;

@@ -52,6 +52,7 @@ struct SceneRun {
   Frames frames;
   // the LZB run's frozen configuration against the beads as they move, when it was checked
   std::optional<ConfigurationCheck> configuration;
+  MovingContactsStats moving;  // the work of a run in the moving geometry (zero otherwise)
 };
 
 // The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
