@@ -46,7 +46,11 @@ const Scene kScenes[] = {
      R"({"type": "hexagonal", "rows": 100, "columns": 100, "radius": 0.005})", "[0, 50]", 3.1e-3},
     {"fcc 20 x 20 x 20",
      R"({"type": "fcc", "layers": 20, "rows": 20, "columns": 20, "radius": 0.005})", "[0, 10, 10]",
-     5e-4}};
+     5e-4},
+    // a smaller crystal, for the cost against size in space (issue 24, item c)
+    {"fcc 10 x 10 x 10",
+     R"({"type": "fcc", "layers": 10, "rows": 10, "columns": 10, "radius": 0.005})", "[0, 5, 5]",
+     2.5e-4}};
 constexpr double kLargestStep = 1.6e-6;  // s, LAMMPS's coarsest
 constexpr double kReferenceTolerance = 1e-10;
 

@@ -8,7 +8,7 @@ Every number of the page comes from that run.
         [--scenes 0,1] [--install-lammps]
 
 Scenes (bench_packing_peers.cpp): 0 hexagonal 32 x 32 to 1 ms, 1 hexagonal 56 x 56 to 1.75 ms,
-2 hexagonal 100 x 100 to 3.1 ms, 3 FCC 20 x 20 x 20 to 0.5 ms. Without LAMMPS (/usr/bin/lmp) its
+2 hexagonal 100 x 100 to 3.1 ms, 3 FCC 20 x 20 x 20 to 0.5 ms, 4 FCC 10 x 10 x 10 to 0.25 ms. Without LAMMPS (/usr/bin/lmp) its
 runs are skipped with a message, and the page says so; --install-lammps installs Debian's.
 """
 import argparse
@@ -51,7 +51,9 @@ def parse(out):
                 else f"tolerance 1e-{b['name'].split('/')[2]}")
         results.setdefault(b["label"], {}).setdefault(code, []).append(
             {"seconds": b["real_time"] * scale[b["time_unit"]], "rms": b["rms_error"],
-             "worst": b["worst_error"], "knob": knob, "bodies": int(b["bodies"])})
+             "worst": b["worst_error"], "knob": knob, "bodies": int(b["bodies"]),
+             "contacts": b.get("contacts_loaded"), "duration": b.get("duration"),
+             "body_steps": b.get("body_steps")})
     return data["context"], results, sorted(set(skipped))
 
 
@@ -84,8 +86,12 @@ def shown_ratio(m, m_bound, lammps, lammps_bound):
 
 
 def figure(results, png):
-    fig, panels = plt.subplots(1, len(results), figsize=(5.2 * len(results), 4.2), squeeze=False)
-    for panel, (scene, codes) in zip(panels[0], results.items()):
+    columns = min(3, len(results))
+    rows = math.ceil(len(results) / columns)
+    fig, panels = plt.subplots(rows, columns, figsize=(5.2 * columns, 4.2 * rows), squeeze=False)
+    for panel in panels.flat[len(results):]:
+        panel.set_visible(False)
+    for panel, (scene, codes) in zip(panels.flat, results.items()):
         for code, rows in codes.items():
             rows = sorted(rows, key=lambda r: r["seconds"])
             marker, color = ("s", "tab:green") if code == "Mimpact" else ("o", "tab:gray")
@@ -103,6 +109,35 @@ def figure(results, png):
     fig.tight_layout()
     fig.savefig(png, dpi=130)
     plt.close(fig)
+
+
+def cost_table(results):
+    """Issue 24, item c: mimpact's time per contact that carried force and per millisecond of the
+    run, at each tolerance, scene by scene."""
+    tolerances = sorted({r["knob"] for codes in results.values() for r in codes.get("Mimpact", [])
+                         if r.get("contacts")}, key=lambda k: -float(k.split()[-1]))
+    if not tolerances:
+        return []
+    lines = ["## What the cost follows", "",
+             "mimpact's time per contact that carried force and per millisecond of the run "
+             "(µs), and its bodies' steps per contact and millisecond, at each tolerance: "
+             "flat across sizes when the cost follows what moves.", "",
+             "| scene | contacts loaded | run (ms) | " +
+             " | ".join(t.replace("tolerance ", "tol ") for t in tolerances) + " | body steps (tol 1e-4) |",
+             "|---|---|---|" + "---|" * len(tolerances) + "---|"]
+    for scene, codes in results.items():
+        rows = {r["knob"]: r for r in codes.get("Mimpact", []) if r.get("contacts")}
+        if not rows:
+            continue
+        any_row = next(iter(rows.values()))
+        per = lambda r: r["seconds"] * 1e6 / (r["contacts"] * r["duration"] * 1e3)
+        cells = [f"{per(rows[t]):.0f}" if t in rows else "—" for t in tolerances]
+        steps = rows.get("tolerance 1e-4")
+        lines.append(f"| {scene} | {any_row['contacts']:.0f} | {any_row['duration'] * 1e3:g} | " +
+                     " | ".join(cells) + " | " +
+                     (f"{steps['body_steps'] / (steps['contacts'] * steps['duration'] * 1e3):.0f}"
+                      if steps else "—") + " |")
+    return lines + [""]
 
 
 def page(context, results, skipped, png, command):
@@ -132,7 +167,7 @@ def page(context, results, skipped, png, command):
                 lines.append(f"| {code.lower()} | {r['knob']} | {r['seconds']:.3g} | "
                              f"{r['rms']:.2e} | {r['worst']:.2e} |")
         lines.append("")
-    return "\n".join(lines)
+    return "\n".join(lines + cost_table(results))
 
 
 def main():
