@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 source scripts/packages.sh
 ensure_packages "${BUILD_PACKAGES[@]}" python3-matplotlib python3-numpy
 echo "building the command line and the Python module into build/release" \
-     "(about eight minutes the first time on two cores)" >&2
+     "(about three minutes the first time on two cores)" >&2
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 # the Python module too: the README's Python example runs right after the demo
 cmake --build build/release -j2 --target mimpact _mimpact >&2
