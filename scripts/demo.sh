@@ -5,4 +5,3 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/reproduce-paper.sh --only N --out build/demo --work build/demo/runs
-echo "figures: build/demo/N_velocities.png, build/demo/N_normalized.png" >&2

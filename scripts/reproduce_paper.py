@@ -837,11 +837,13 @@ def main():
             continue
         print(f"{title} ...", file=sys.stderr, flush=True)
         report = experiment(runner, out)
+        if args.only:  # one experiment, on a terminal: plain text, the figures as paths
+            paths = ", ".join(str(out / name) for name in report["figures"])
+            print(f"{title}\n{'=' * len(title)}\n\n{report['text']}\n\n{report['table']}\n\n"
+                  f"figures: {paths}")
+            return
         figures = "\n".join(f"![{name}]({name})" for name in report["figures"])
         sections.append(f"## {title}\n\n{report['text']}\n\n{report['table']}\n\n{figures}\n")
-    if args.only:
-        print("\n".join(sections))
-        return
     header = f"""# Published experiments, reproduced
 
 Written by `scripts/reproduce-paper.sh` from {runner.count} runs of `mimpact chain` and `mimpact converge`
