@@ -26,6 +26,8 @@ std::vector<Body> bodies_of(const ChainScene& scene) {
   for (const SegmentSpec& segment : scene.chain.segments)
     for (int k = 0; k < segment.count; ++k)
       bodies.push_back({segment.radius * std::pow(1.0 - segment.taper, k), segment.material, 0.0});
+  for (const BeadSpec& bead : scene.chain.beads)
+    bodies.push_back({bead.radius, bead.material, 0.0});
   if (const StrikerSpec* right = scene.striker(Side::right))
     bodies.push_back({right->radius, right->material, -right->velocity});
   return bodies;
@@ -66,7 +68,7 @@ void precompress(ChainModel& model, const ChainScene& scene) {
 
 ChainModel build_chain_model(const ChainScene& scene, const granular::RunLimits& limits) {
   granular::check_memory(granular::model_bytes(scene.body_count(), scene.contact_count(), 1),
-                         "chain.segments (" + std::to_string(scene.bead_count()) + " beads)",
+                         scene.chain.key() + " (" + std::to_string(scene.bead_count()) + " beads)",
                          limits);
   const std::vector<Body> bodies = bodies_of(scene);
   const Eigen::Index n = Eigen::Index(bodies.size());

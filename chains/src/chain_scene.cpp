@@ -19,12 +19,16 @@ constexpr std::int64_t kMostBeads = 100'000'000;
 
 // What the field lists cannot say alone: counts, pairings, and fields that depend on others.
 void check_bodies(const ChainScene& scene, const granular::SceneChecks& checks) {
-  if (scene.chain.segments.empty())
-    checks.fail("chain.segments must be a non-empty array of segments");
-  std::int64_t beads = 0;
-  for (const SegmentSpec& segment : scene.chain.segments) beads += segment.count;
+  const ChainSpec& chain = scene.chain;
+  if (chain.segments.empty() == chain.beads.empty())
+    checks.fail(chain.segments.empty()
+                    ? "chain needs its beads: \"segments\", a non-empty array of runs of beads, "
+                      "or \"beads\", a non-empty array of beads"
+                    : "chain has both \"segments\" and \"beads\"; allowed: one of them");
+  std::int64_t beads = std::int64_t(chain.beads.size());
+  for (const SegmentSpec& segment : chain.segments) beads += segment.count;
   if (beads > kMostBeads)
-    checks.fail("chain.segments hold " + std::to_string(beads) +
+    checks.fail(chain.key() + " hold " + std::to_string(beads) +
                 " beads in all; allowed: at most " + std::to_string(kMostBeads));
   if (scene.strikers.empty() || scene.strikers.size() > 2)
     checks.fail("strikers must be an array of one or two strikers");
@@ -70,7 +74,8 @@ void check_precompression(const ChainScene& scene, const granular::SceneChecks& 
 ChainScene read_chain_scene(json document, const std::string& source,
                             const kernel::JsonLocations* locations) {
   const granular::SceneChecks checks(source);
-  granular::lend_material(document, {"/chain/segments", "/strikers", "/wall"}, source);
+  granular::lend_material(document, {"/chain/segments", "/chain/beads", "/strikers", "/wall"},
+                          source);
   ChainScene scene;
   kernel::read_fields(
       document, scene,
@@ -89,7 +94,7 @@ ChainScene parse_chain_scene(std::string_view text, const std::string& source) {
 }
 
 int ChainScene::bead_count() const {
-  int count = 0;
+  int count = int(chain.beads.size());
   for (const SegmentSpec& segment : chain.segments) count += segment.count;
   return count;
 }

@@ -73,6 +73,47 @@ std::string with(const std::string& from, const std::string& to) {
   return text.replace(at, from.size(), to);
 }
 
+// A chain given bead by bead ("beads": a radius and a material each) is the chain its segments
+// describe: the same bodies, masses and laws; a dimer chain (alternating radii, one bead of
+// another material) needs no segment per bead.
+TEST(ChainScene, BeadByBeadIsTheChainOfTheSegments) {
+  const std::string aluminium = R"({"density": 2700, "young": 70e9, "poisson": 0.33})";
+  const ChainModel segments = build_chain_model(parse_chain_scene(kValid, "segments.json"));
+  const ChainModel beads = build_chain_model(parse_chain_scene(
+      with(R"("chain": {"segments": [{"count": 3, "radius": 0.010, "taper": 0.1},
+                         {"count": 2, "radius": 0.005,
+                          "material": {"density": 2700, "young": 70e9, "poisson": 0.33}}]})",
+           R"("chain": {"beads": [{"radius": 0.010}, {"radius": 0.009}, {"radius": 0.0081},
+                                   {"radius": 0.005, "material": )" +
+               aluminium + R"(}, {"radius": 0.005, "material": )" + aluminium + "}]}"),
+      "beads.json"));
+  ASSERT_EQ(beads.body_count(), segments.body_count());
+  for (Eigen::Index b = 0; b < beads.body_count(); ++b) {
+    EXPECT_NEAR(beads.radius(b), segments.radius(b), 1e-15 * segments.radius(b)) << b;
+    EXPECT_NEAR(beads.mass(b), segments.mass(b), 1e-14 * segments.mass(b)) << b;
+  }
+  for (std::size_t j = 0; j < beads.laws.size(); ++j)
+    EXPECT_NEAR(beads.laws[j].stiffness, segments.laws[j].stiffness,
+                1e-14 * segments.laws[j].stiffness)
+        << j;
+  // the bead list's own errors name the bead
+  EXPECT_NE(error_of(with(R"("chain": {"segments")",
+                          R"("chain": {"beads": [{"radius": 0.01}], "segments")"))
+                .find("both \"segments\" and \"beads\""),
+            std::string::npos);
+  auto bead_error = [&](const std::string& chain) {
+    return error_of(R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+      "chain": )" + chain +
+                    R"(, "strikers": [{"radius": 0.01, "velocity": 1}]})");
+  };
+  EXPECT_NE(bead_error(R"({"beads": [{"radius": 0.01}, {"radius": -0.01}]})")
+                .find("chain.beads[1].radius = -0.01 is invalid"),
+            std::string::npos);
+  EXPECT_NE(bead_error(R"({"beads": []})").find("chain needs its beads"), std::string::npos);
+  EXPECT_NE(bead_error(R"({"beads": [{"diameter": 0.01}]})").find("unknown key \"diameter\""),
+            std::string::npos);
+}
+
 TEST(ChainScene, EveryBadFieldIsNamed) {
   auto has = [](const std::string& message, const std::string& part) {
     return message.find(part) != std::string::npos;

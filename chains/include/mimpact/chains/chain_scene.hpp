@@ -79,13 +79,30 @@ struct WallSpec {
   }
 };
 
-struct ChainSpec {
-  std::vector<SegmentSpec> segments;
+// One bead of a chain given bead by bead (a dimer chain: alternating radii).
+struct BeadSpec {
+  double radius = 0.0;          // m
+  granular::Material material;  // the scene's "material" when the bead gives none
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
-    field("segments", self.segments, any().needed());
+    field("radius", self.radius, positive("m").needed());
+    field("material", self.material, any().needed());
   }
+};
+
+// The beads, left to right: runs of beads (segments), or the beads one by one.
+struct ChainSpec {
+  std::vector<SegmentSpec> segments;
+  std::vector<BeadSpec> beads;
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("segments", self.segments);
+    field("beads", self.beads);
+  }
+  // "chain.segments" or "chain.beads", for messages
+  std::string key() const { return beads.empty() ? "chain.segments" : "chain.beads"; }
 };
 
 // A chain scene file (the format: docs/scenes.md). Bodies are numbered left to right: a
