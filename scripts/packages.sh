@@ -5,7 +5,8 @@ BUILD_PACKAGES=(cmake make g++ libeigen3-dev libboost-dev libboost-program-optio
                 libsuitesparse-dev nlohmann-json3-dev
                 python3-dev pybind11-dev python3-numpy)  # the Python module
 TEST_PACKAGES=(libgtest-dev libbenchmark-dev clang-format python3-pytest python3-scipy
-               python3-distributed python3-matplotlib python3-meshio)
+               python3-distributed python3-matplotlib python3-meshio
+               python3-vtk9 xvfb xauth)  # the ParaView recipe rendered headless
 
 ensure_packages() {
   local missing=()

@@ -1,12 +1,14 @@
 """What `mimpact packing --out DIR` writes, read back and turned into pictures.
 
 - `load(directory)`: the summary, the bodies and contacts, and the frames, as NumPy arrays.
-- `write_paraview(directory)`: a time series of VTK files for ParaView, written with meshio:
-  per frame the beads (points with radius, velocity and speed; ParaView draws them as spheres
-  with its Glyph filter, scaled by radius) and the contacts (segments between the centres, or
-  from a centre to the wall, carrying the force), and `packing.pvd`, the collection ParaView
-  opens as one time series. In two or three dimensions; in the moving geometry the beads are
-  where each frame has them (frame_positions.csv), else at the configuration of the impact.
+- `write_paraview(directory)`: two time series of VTK files for ParaView, written with meshio:
+  `beads.pvd` (points with radius, velocity and speed; ParaView draws them as spheres with its
+  Glyph filter, scaled by radius) and `contacts.pvd` (segments between the centres, or from a
+  centre to the wall, carrying the force as cell and point data; Tube scales by it). In two or
+  three dimensions; in the moving geometry the beads are where each frame has them
+  (frame_positions.csv), else at the configuration of the impact.
+- `render(directory, png)`: one frame drawn with VTK as the ParaView recipe of
+  docs/packings.md shows it (python3-vtk9; under xvfb-run without a display).
 - `draw_force_chains(directory, png)`: the contact forces as segments of width proportional to
   force at a few instants, the picture granular physicists call force chains.
 
@@ -87,10 +89,16 @@ def _space(points):
 
 
 def write_paraview(directory, out=None):
-    """Writes out/beads_NNNN.vtu, out/contacts_NNNN.vtu per frame and out/packing.pvd
-    (out defaults to directory/paraview); returns the path of packing.pvd. Positions are each
-    frame's in the moving geometry, else the configuration of the impact, which the LZB model
-    keeps."""
+    """Writes two time series for ParaView into out (directory/paraview by default): per frame
+    out/beads_NNNN.vtu and out/contacts_NNNN.vtu, collected by out/beads.pvd and
+    out/contacts.pvd; returns {"beads": path, "contacts": path} of the two collections.
+
+    The beads are vertices carrying `radius`, `velocity` and `speed`; the contacts are segments
+    (each with its own two points) carrying `force` as cell data and as point data, which
+    ParaView's Tube filter scales by. Positions are each frame's in the moving geometry, else
+    the configuration of the impact, which the LZB model keeps. Two series, not one multiblock:
+    a filter applied to beads and contacts at once (Glyph scaled by radius, Tube) breaks on the
+    part without its array (docs/packings.md gives the filters)."""
     import meshio
 
     data = load(directory)
@@ -102,27 +110,102 @@ def write_paraview(directory, out=None):
     os.makedirs(out, exist_ok=True)
     bodies = len(data["radius"])
     lines = np.arange(2 * len(data["first"])).reshape(-1, 2)
-    collection = ElementTree.Element("VTKFile", type="Collection", version="0.1")
-    datasets = ElementTree.SubElement(collection, "Collection")
+    collections = {name: ElementTree.Element("VTKFile", type="Collection", version="0.1")
+                   for name in ("beads", "contacts")}
+    datasets = {name: ElementTree.SubElement(root, "Collection")
+                for name, root in collections.items()}
     for frame, time in enumerate(data["time"]):
         centre = data["position"][frame] if "position" in data else data["centre"]
-        points = _space(centre)
-        contact_points = _space(contact_segments(data, centre).reshape(-1, data["dimension"]))
         velocity = _space(data["velocity"][frame])
-        beads = meshio.Mesh(
-            points, [("vertex", np.arange(bodies).reshape(-1, 1))],
-            point_data={"radius": data["radius"], "velocity": velocity,
-                        "speed": np.linalg.norm(velocity, axis=1)})
-        contacts = meshio.Mesh(contact_points, [("line", lines)],
-                               cell_data={"force": [data["force"][frame]]})
-        for name, mesh in (("beads", beads), ("contacts", contacts)):
+        force = data["force"][frame]
+        meshes = {
+            "beads": meshio.Mesh(
+                _space(centre), [("vertex", np.arange(bodies).reshape(-1, 1))],
+                point_data={"radius": data["radius"], "velocity": velocity,
+                            "speed": np.linalg.norm(velocity, axis=1)}),
+            "contacts": meshio.Mesh(
+                _space(contact_segments(data, centre).reshape(-1, data["dimension"])),
+                [("line", lines)], point_data={"force": np.repeat(force, 2)},
+                cell_data={"force": [force]}),
+        }
+        for name, mesh in meshes.items():
             file = f"{name}_{frame:04d}.vtu"
             meshio.write(os.path.join(out, file), mesh)
-            ElementTree.SubElement(datasets, "DataSet", timestep=repr(float(time)),
-                                   part="0" if name == "beads" else "1", file=file)
-    path = os.path.join(out, "packing.pvd")
-    ElementTree.ElementTree(collection).write(path, xml_declaration=True)
-    return path
+            ElementTree.SubElement(datasets[name], "DataSet", timestep=repr(float(time)),
+                                   part="0", file=file)
+    paths = {}
+    for name, root in collections.items():
+        paths[name] = os.path.join(out, f"{name}.pvd")
+        ElementTree.ElementTree(root).write(paths[name], xml_declaration=True)
+    return paths
+
+
+def render(directory, png, frame=None, size=(1200, 900)):
+    """Draws one frame as docs/packings.md's ParaView recipe shows it, with VTK (Debian's
+    python3-vtk9; under xvfb-run where there is no display): the beads as spheres of their
+    radius (Glyph, scaled by radius, factor 2), the contacts as tubes whose radius grows with
+    their force (Extract Surface, then Tube varying its radius by the scalar force from 0.1 mm
+    to 2.5 mm). `frame`: its index, by default the frame whose contacts carry the most force.
+    Writes png and returns its path; write_paraview(directory) first."""
+    import vtk
+
+    out = os.path.join(directory, "paraview")
+    force = load(directory)["force"]
+    index = int(np.argmax(force.sum(axis=1))) if frame is None else frame % len(force)
+
+    def read(name):
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(os.path.join(out, f"{name}_{index:04d}.vtu"))
+        reader.Update()
+        return reader
+
+    beads = read("beads")
+    beads.GetOutput().GetPointData().SetActiveScalars("radius")
+    sphere = vtk.vtkSphereSource()
+    sphere.SetThetaResolution(24)
+    sphere.SetPhiResolution(16)
+    glyph = vtk.vtkGlyph3D()
+    glyph.SetInputConnection(beads.GetOutputPort())
+    glyph.SetSourceConnection(sphere.GetOutputPort())
+    glyph.SetScaleModeToScaleByScalar()
+    glyph.SetScaleFactor(2.0)  # the sphere source's radius is 0.5
+    glyph.SetColorModeToColorByScale()
+    contacts = read("contacts")
+    surface = vtk.vtkDataSetSurfaceFilter()  # ParaView's Extract Surface
+    surface.SetInputConnection(contacts.GetOutputPort())
+    surface.Update()
+    surface.GetOutput().GetPointData().SetActiveScalars("force")
+    tube = vtk.vtkTubeFilter()
+    tube.SetInputData(surface.GetOutput())
+    tube.SetRadius(1e-4)
+    tube.SetVaryRadiusToVaryRadiusByScalar()
+    tube.SetRadiusFactor(25.0)
+    tube.SetNumberOfSides(12)
+    renderer = vtk.vtkRenderer()
+    renderer.SetBackground(1.0, 1.0, 1.0)
+    for source, colour, opacity in ((glyph, (0.75, 0.75, 0.78), 0.35), (tube, (0.8, 0.1, 0.1), 1.0)):
+        mapper = vtk.vtkPolyDataMapper()
+        mapper.SetInputConnection(source.GetOutputPort())
+        mapper.ScalarVisibilityOff()
+        actor = vtk.vtkActor()
+        actor.SetMapper(mapper)
+        actor.GetProperty().SetColor(*colour)
+        actor.GetProperty().SetOpacity(opacity)
+        renderer.AddActor(actor)
+    window = vtk.vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.AddRenderer(renderer)
+    window.SetSize(*size)
+    renderer.ResetCamera()
+    window.Render()
+    image = vtk.vtkWindowToImageFilter()
+    image.SetInput(window)
+    image.Update()
+    writer = vtk.vtkPNGWriter()
+    writer.SetFileName(str(png))
+    writer.SetInputConnection(image.GetOutputPort())
+    writer.Write()
+    return png
 
 
 def draw_force_chains(directory, png, instants=4, axes=None):
@@ -163,5 +246,6 @@ def draw_force_chains(directory, png, instants=4, axes=None):
 if __name__ == "__main__":
     if len(sys.argv) != 2:
         sys.exit("usage: python3 -m mimpact.packing_output DIR  (the --out DIR of mimpact packing)")
-    print(write_paraview(sys.argv[1]))
+    for path in write_paraview(sys.argv[1]).values():
+        print(path)
     print(draw_force_chains(sys.argv[1], os.path.join(sys.argv[1], "force_chains.png")))
