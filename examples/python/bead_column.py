@@ -3,7 +3,7 @@
 (C++). The beads are LagrangianDS whose weight is a Python callable, so the run also shows the
 kernel calling back into Python.
 
-    PYTHONPATH=build/release/python python3 examples/python/bead_column.py
+    PYTHONPATH=build/release/python /usr/bin/python3 examples/python/bead_column.py
 """
 
 import mimpact

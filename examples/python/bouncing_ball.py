@@ -6,7 +6,7 @@ with the LZB impact problem and the acceleration-level LCP, chosen by name. It p
 bounce times and apex heights against the rigid bounce's geometric series, then the ball at
 rest with the floor carrying its weight, the numbers the C++ example prints.
 
-    PYTHONPATH=build/release/python python3 examples/python/bouncing_ball.py
+    PYTHONPATH=build/release/python /usr/bin/python3 examples/python/bouncing_ball.py
 """
 
 import math

@@ -7,7 +7,7 @@ synthetic: the model's own forces at e = 0.965 and V = 0.62 m/s (the paper's val
 Gaussian noise. The fit starts from e = 0.9, V = 0.5 m/s and should give the values back within
 two standard errors; the figure draws the data against the fitted model.
 
-    PYTHONPATH=build/release/python python3 examples/python/calibrate_restitution.py [--out DIR]
+    PYTHONPATH=build/release/python /usr/bin/python3 examples/python/calibrate_restitution.py [--out DIR]
 """
 
 import argparse

@@ -6,7 +6,7 @@ of Melo's chain: mimpact.fit varies the beads' Young's modulus, each run gives t
 between beads 26 and 46 and its force there, hence the model's A, and the model's speeds at
 the measured forces meet the data in the least-squares sense.
 
-    PYTHONPATH=build/release/python python3 examples/python/coste_speed_law.py [--out DIR]
+    PYTHONPATH=build/release/python /usr/bin/python3 examples/python/coste_speed_law.py [--out DIR]
 """
 
 import argparse

@@ -3,7 +3,7 @@ previous one's radius, struck by a 5 mm ball at 1 m/s) over the taper q and the 
 drawn as a heat map: a sweep of 8 x 6 runs of the adaptive LZB integrator on the local cores,
 or on a Dask cluster with --scheduler ADDRESS.
 
-    PYTHONPATH=build/release/python python3 examples/python/taper_sweep.py [--out DIR]
+    PYTHONPATH=build/release/python /usr/bin/python3 examples/python/taper_sweep.py [--out DIR]
 """
 
 import argparse

@@ -12,7 +12,7 @@
 - `draw_force_chains(directory, png)`: the contact forces as segments of width proportional to
   force at a few instants, the picture granular physicists call force chains.
 
-Run `python3 -m mimpact.packing_output DIR` to write DIR/paraview/ and DIR/force_chains.png.
+Run `/usr/bin/python3 -m mimpact.packing_output DIR` to write DIR/paraview/ and DIR/force_chains.png.
 """
 
 import json

@@ -1,5 +1,5 @@
 """docs/packings.md's ParaView recipe, property by property as a user sets them, in ParaView's
-own Python (pvbatch, under xvfb-run): python3 paraview_recipe.py DIR FRAME PNG renders frame
+own Python (under xvfb-run): pvbatch3.11 paraview_recipe.py DIR FRAME PNG renders frame
 FRAME of DIR/paraview/{beads,contacts}.pvd into PNG. Run by test_packing_output.py where
 ParaView is installed (Debian's paraview and python3-paraview)."""
 import sys
