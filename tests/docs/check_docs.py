@@ -47,7 +47,8 @@ class Block:
             page, line, language, text, directive)
 
     def where(self):
-        return f"{self.page.relative_to(ROOT)}:{self.line}"
+        page = self.page.relative_to(ROOT) if self.page.is_relative_to(ROOT) else self.page
+        return f"{page}:{self.line}"
 
 
 def blocks_of(page):
@@ -97,20 +98,27 @@ def normalised(line):
     return " ".join(line.split())
 
 
-def check_output(expected, printed):
-    """Each shown line, but `...`, is among the printed lines, in order."""
-    lines = [normalised(line) for line in printed.splitlines()]
+def missing_line(shown, lines, normalise, elisions=("...",)):
+    """The first of the shown lines (blank ones and elisions aside) that is not among `lines` in
+    order after the ones before it, or None."""
+    lines = [normalise(line) for line in lines]
     at = 0
-    for wanted in expected.splitlines():
-        wanted = normalised(wanted)
-        if not wanted or wanted == "...":
+    for wanted in shown.splitlines():
+        wanted = normalise(wanted)
+        if not wanted or wanted in elisions:
             continue
         while at < len(lines) and lines[at] != wanted:
             at += 1
         if at == len(lines):
-            return f"the output does not show: {wanted!r}"
+            return wanted
         at += 1
     return None
+
+
+def check_output(expected, printed):
+    """Each shown line, but `...`, is among the printed lines, in order."""
+    missing = missing_line(expected, printed.splitlines(), normalised)
+    return f"the output does not show: {missing!r}" if missing is not None else None
 
 
 def code(line):
@@ -121,18 +129,11 @@ def code(line):
 def check_excerpt(block, path):
     """The block's lines, but `...` and blank ones, are lines of `path`, in order (their trailing
     comments aside: the docs may explain a line)."""
-    lines = [code(line) for line in (ROOT / path).read_text().splitlines()]
-    at = 0
-    for wanted in block.text.splitlines():
-        wanted = code(wanted)
-        if not wanted or wanted in ("...", "// ..."):
-            continue
-        while at < len(lines) and lines[at] != wanted:
-            at += 1
-        if at == len(lines):
-            return f"{path} has no line {wanted!r} (after the ones before it)"
-        at += 1
-    return None
+    missing = missing_line(block.text, (ROOT / path).read_text().splitlines(), code,
+                           ("...", "// ..."))
+    if missing is None:
+        return None
+    return f"{path} has no line {missing!r} (after the ones before it)"
 
 
 def python_page(blocks, scratch):
