@@ -20,6 +20,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENES = ROOT / "examples" / "scenes" / "paper"
@@ -90,6 +91,12 @@ class Result:
 
 def deviation(ours, reference):
     return 100.0 * (ours - reference) / reference
+
+
+def ball_axis(ax):
+    """An x axis numbering balls: whole ticks only."""
+    ax.set_xlabel("ball")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
 
 
 def save(fig, path):
@@ -416,7 +423,7 @@ def experiment_n(runner, out):
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for e, result in results.items():
         ax.plot(balls, result.velocities()[1:] / speed, "o-", ms=4, label=f"e = {e:g}")
-    ax.set_xlabel("ball")
+    ball_axis(ax)
     ax.set_ylabel("post-impact velocity / impactor's velocity")
     ax.legend()
     save(fig, out / "N_velocities.png")
@@ -426,7 +433,7 @@ def experiment_n(runner, out):
     ax.semilogy(balls, np.abs(v[1:]), "o-", label="velocity")
     ax.semilogy(balls, np.abs(masses[1:] * v[1:] / masses[0]), "s-", label="momentum")
     ax.semilogy(balls, masses[1:] * v[1:] ** 2 / masses[0], "^-", label="kinetic energy")
-    ax.set_xlabel("ball")
+    ball_axis(ax)
     ax.set_ylabel("normalized by the impactor's")
     ax.set_title("e = 0.965", fontsize=9)
     ax.legend()
