@@ -107,14 +107,11 @@ def save(fig, path):
 
 # --- C: convergence of the impulse dynamics (Nguyen & Brogliato 2011, appendix A.2, tables 2-4) ----------
 
+# The papers' numbers, with their sources: the one file the tests read too
+PUBLISHED = json.loads((ROOT / "examples" / "scenes" / "paper" / "published.json").read_text())
 # The paper's tables 2-4: chain -> [(delta_p, steps, max eta_h, eta+_h, converged)]
-PAPER_TABLES = {
-    "C1": [(1e-4, 4622, 0.09, 0.0046, False), (1e-5, 45913, 0.008, 0.0003, True),
-           (1e-6, 458934, 0.003, 0.00015, True)],
-    "C2": [(1e-5, 22331, 0.05, 0.002, False), (1e-6, 223001, 0.006, 0.00007, True)],
-    "C3": [(1e-5, 14139, 0.13, 0.07, False), (1e-6, 272754, 0.013, 0.0018, False),
-           (1e-7, 1363111, 0.03, 0.002, False)],
-}
+PAPER_TABLES = {chain: [tuple(row) for row in PUBLISHED["convergence"][chain]]
+                for chain in ("C1", "C2", "C3")}
 # C3 runs with the paper's (Siconos's) fixed termination thresholds, which its verdicts depend on
 CONVERGENCE_SCENE = {"C1": ("c1.json", CONVERGENCE_SCENES), "C2": ("c2.json", CONVERGENCE_SCENES),
                      "C3": ("c3_fixed_thresholds.json", SCENES)}

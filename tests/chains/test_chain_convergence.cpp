@@ -9,36 +9,32 @@
 
 #include "../support/chain_runs.hpp"
 #include "../support/hertz_chain_reference.hpp"
+#include "../support/published.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::testing {
 namespace {
 
-struct TableRow {
-  double delta_p;
-  std::int64_t paper_steps;  // the paper counts one more than the steps taken
-};
-
-void expect_step_counts(const std::string& scene, const std::vector<TableRow>& table) {
+// The step counts of the paper's table for `chain` (examples/scenes/paper/published.json), each
+// one more than the steps taken, within 1 %.
+void expect_step_counts(const std::string& scene, const std::string& chain) {
   const chains::ChainModel model = scene_model(scene);
-  for (const TableRow& row : table) {
-    const granular::ImpactOutcome impact = run_chain(model, row.delta_p);
+  for (const auto& row : published("convergence").at(chain)) {
+    const double delta_p = row[0];
+    const std::int64_t paper_steps = row[1];
+    const granular::ImpactOutcome impact = run_chain(model, delta_p);
     ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated);
-    const double taken = double(row.paper_steps - 1);
+    const double taken = double(paper_steps - 1);
     EXPECT_NEAR(double(impact.result.steps), taken, 0.01 * taken)
-        << scene << " at delta_p = " << row.delta_p;
-    std::printf("%s delta_p = %g: %lld steps (paper %lld - 1)\n", scene.c_str(), row.delta_p,
-                (long long)impact.result.steps, (long long)row.paper_steps);
+        << scene << " at delta_p = " << delta_p;
+    std::printf("%s delta_p = %g: %lld steps (paper %lld - 1)\n", scene.c_str(), delta_p,
+                (long long)impact.result.steps, (long long)paper_steps);
   }
 }
 
-TEST(PaperTable2, C1StepCountsWithinOnePercent) {
-  expect_step_counts("c1.json", {{1e-4, 4622}, {1e-5, 45913}, {1e-6, 458934}});
-}
+TEST(PaperTable2, C1StepCountsWithinOnePercent) { expect_step_counts("c1.json", "C1"); }
 
-TEST(PaperTable3, C2StepCountsWithinOnePercent) {
-  expect_step_counts("c2.json", {{1e-5, 22331}, {1e-6, 223001}});
-}
+TEST(PaperTable3, C2StepCountsWithinOnePercent) { expect_step_counts("c2.json", "C2"); }
 
 TEST(Conservation, MomentumToRoundOffInEveryConvergenceChain) {
   for (const char* scene : {"c1.json", "c2.json", "c3.json"}) {
@@ -75,7 +71,8 @@ TEST(Conservation, ElasticChainKeepsItsEnergyToSecondOrder) {
 TEST(PaperTable4, C3EndsCleanlyAtEveryPublishedStep) {
   const chains::ChainModel model = scene_model("c3.json");
   const double block_speed = model.velocity(0) / double(model.body_count());
-  for (double delta_p : {1e-5, 1e-6, 1e-7}) {
+  for (const auto& row : published("convergence").at("C3")) {
+    const double delta_p = row[0];
     const granular::ImpactOutcome impact = run_chain(model, delta_p);
     ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated) << delta_p;
     ASSERT_TRUE(impact.velocity_after.allFinite());
@@ -85,11 +82,8 @@ TEST(PaperTable4, C3EndsCleanlyAtEveryPublishedStep) {
       for (Eigen::Index i = 0; i < model.body_count(); ++i)
         EXPECT_NEAR(impact.velocity_after(i), block_speed, 0.01 * block_speed) << "ball " << i;
     }
-    std::printf("C3 delta_p = %g: %lld steps (paper's table 4: %s), kinetic energy ratio %.6f\n",
-                delta_p, (long long)impact.result.steps,
-                delta_p == 1e-5   ? "14139"
-                : delta_p == 1e-6 ? "272754"
-                                  : "1363111",
+    std::printf("C3 delta_p = %g: %lld steps (paper's table 4: %lld), kinetic energy ratio %.6f\n",
+                delta_p, (long long)impact.result.steps, (long long)published_steps("C3", delta_p),
                 kinetic_energy_ratio(model, impact));
   }
 }
