@@ -369,10 +369,10 @@ void MovingContacts::Group::track_peaks(double t0, double t1) {
 
 // The cubic Hermite of the gap over [t0, t1] (its gaps and rates at both ends, those of the
 // integration) places the smallest gap and gives it, to (t1 - t0)^4 / 384 times the gap's fourth
-// derivative: a few 1e-6 of the overlap at tolerance 1e-4, below 1e-10 at 1e-10 (the steps
-// shrink as the tolerance to the fifth). An evaluation of the dense output there would cost the
-// whole group's state for each peak, which made the cost grow as the group times its contacts
-// (a third of an FCC 20^3 run).
+// derivative, a step's error bound that shrinks with the tolerance. An evaluation of the dense
+// output there would cost the whole group's state for each peak, which made the cost grow as
+// the group times its contacts (a third of an FCC 20^3 run). Only the reported peak forces
+// depend on it, not the motion.
 std::pair<double, double> MovingContacts::Group::peak(const Contact& c, double t0, double t1,
                                                       double gap, double rate) const {
   const double h = t1 - t0;
