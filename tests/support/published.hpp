@@ -23,6 +23,29 @@ inline const nlohmann::json& published(const std::string& name) {
   return all.at(name);
 }
 
+// The value in `column` of the one row of set `name` whose columns equal `match`, as in
+// published_value("colliding_waves", "simulated", {{"beads", 25}, {"quantity", "..."}}).
+inline double published_value(const std::string& name, const std::string& column,
+                              const nlohmann::json& match) {
+  const nlohmann::json& set = published(name);
+  const nlohmann::json& columns = set.at("columns");
+  auto index = [&](const std::string& key) -> std::size_t {
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      if (columns[k] == key) return k;
+    throw std::runtime_error(name + ": no column " + key);
+  };
+  const nlohmann::json* found = nullptr;
+  for (const auto& row : set.at("rows")) {
+    bool matches = true;
+    for (const auto& [key, value] : match.items()) matches = matches && row[index(key)] == value;
+    if (!matches) continue;
+    if (found) throw std::runtime_error(name + ": more than one row matches " + match.dump());
+    found = &row;
+  }
+  if (!found) throw std::runtime_error(name + ": no row matches " + match.dump());
+  return (*found)[index(column)].get<double>();
+}
+
 // A row of Nguyen & Brogliato's tables 2-4: the step count they publish (one more than the steps
 // taken) at delta_p (N s), for chain "C1", "C2" or "C3".
 inline std::int64_t published_steps(const std::string& chain, double delta_p) {
