@@ -118,7 +118,15 @@ def solitary_wave_speed(block):
     return "\n".join(lines)
 
 
-RENDER = {"convergence": convergence, "wall_scaling": wall_scaling,
+def siconos_c1(block):
+    velocities = block["velocities"]
+    signed = [("−" + number(-v)) if v < 0 else number(v) for v in velocities]
+    rows = [" ".join(signed[k:k + 8])
+            for k in range(0, len(signed), 8)]
+    return "\n".join("    " + row for row in rows)
+
+
+RENDER = {"convergence": convergence, "siconos_c1": siconos_c1, "wall_scaling": wall_scaling,
           "wall_extrapolation": wall_extrapolation, "stepped_chain": stepped_chain,
           "colliding_waves": colliding_waves, "solitary_wave_speed": solitary_wave_speed}
 

@@ -112,14 +112,12 @@ TEST(Convergence, PostImpactDiscrepancyFallsAtFirstOrder) {
   EXPECT_NEAR(c2, 1.0, 0.2);
 }
 
-// Siconos 4.5's LZB at delta_p = 1e-6 (docs/experiments.md). Its fixed energy threshold leaves it
-// up to 5e-4 m/s from the exact Hertz chain; at the same delta_p ours must be closer.
+// Siconos 4.5's LZB at delta_p = 1e-6 (published.json, siconos_c1). Its fixed energy threshold
+// leaves it up to 5e-4 m/s from the exact Hertz chain; at the same delta_p ours must be closer.
 TEST(Convergence, C1AgreesWithSiconosAndIsCloserToTheExactHertzChain) {
-  const std::vector<double> published = {
-      -0.071059,   -0.030186,   -0.01575,    -0.0088081,  -0.0050623, -0.0029366, -0.0017044,
-      -0.00098557, -0.00056672, -0.00032391, -0.00018408, -0.0001041, -5.863e-5,  -3.2917e-5,
-      -1.8445e-5,  -1.0324e-5,  -5.7714e-6,  6.3078e-6,   0.0039181,  0.1481,     0.98578};
-  const Eigen::VectorXd siconos = Eigen::Map<const Eigen::VectorXd>(published.data(), 21);
+  const auto velocities = published("siconos_c1").at("velocities").get<std::vector<double>>();
+  ASSERT_EQ(velocities.size(), 21u);
+  const Eigen::VectorXd siconos = Eigen::Map<const Eigen::VectorXd>(velocities.data(), 21);
   const chains::ChainModel model = scene_model("c1.json");
   const Eigen::VectorXd ours = run_chain(model, 1e-6).velocity_after;
   const Eigen::VectorXd exact =
