@@ -195,10 +195,30 @@ double MovingContacts::next_meeting(double target) const {
   return time_ + horizon;
 }
 
+MovingContacts::Group& MovingContacts::new_group() {
+  groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
+  return *groups_.back();
+}
+
+std::unique_ptr<MovingContacts::Group> MovingContacts::take_previous_group(
+    const std::vector<std::int32_t>& members) {
+  votes_.assign(previous_groups_.size(), 0);
+  for (std::int32_t body : members) {
+    const Body& b = bodies_[std::size_t(body)];
+    if (b.last_window == stats_.windows - 1 && previous_groups_[std::size_t(b.last_group)])
+      ++votes_[std::size_t(b.last_group)];
+  }
+  const auto best = std::max_element(votes_.begin(), votes_.end());
+  if (best == votes_.end() || *best == 0) return nullptr;
+  return std::move(previous_groups_[std::size_t(best - votes_.begin())]);
+}
+
 void MovingContacts::run_window(double end) {
   refresh_lists(end);
+  previous_groups_ = std::move(groups_);
   groups_.clear();
   form_groups();
+  previous_groups_.clear();
   form_collision_groups(end);
   std::vector<bool> integrated;
   while (true) {
@@ -294,8 +314,12 @@ void MovingContacts::form_groups() {
   for (std::int32_t i : loaded_bodies) bodies_[std::size_t(i)].slot = -1;
   for (std::size_t c = 0; c < members.size(); ++c) {
     if (members[c].empty()) continue;
-    groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
-    groups_.back()->begin(time_, members[c]);
+    if (std::unique_ptr<Group> carried = take_previous_group(members[c])) {
+      groups_.push_back(std::move(carried));
+      groups_.back()->carry_on(std::int32_t(groups_.size() - 1), time_, members[c]);
+    } else {
+      new_group().begin(time_, members[c]);
+    }
   }
 }
 
@@ -335,8 +359,7 @@ void MovingContacts::form_collision_groups(double end) {
   for (const Meeting& m : meetings) {
     if (bodies_[std::size_t(m.first)].owner >= 0) continue;
     if (m.second >= 0 && bodies_[std::size_t(m.second)].owner >= 0) continue;
-    groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
-    groups_.back()->begin_collision(m.time, m.first, m.second);
+    new_group().begin_collision(m.time, m.first, m.second);
     note_moving(m.first);
     if (m.second >= 0) note_moving(m.second);
   }
@@ -372,6 +395,10 @@ bool MovingContacts::merge_groups_that_met() {
     if (group) sets[std::size_t(met.find(group->id()))].push_back(group->id());
   for (const auto& set : sets) {
     if (set.size() < 2) continue;
+    // the largest goes on with the others' members, integrated again from the earliest start
+    const std::int32_t largest = *std::max_element(set.begin(), set.end(), [&](auto a, auto b) {
+      return groups_[std::size_t(a)]->members().size() < groups_[std::size_t(b)]->members().size();
+    });
     double start = INFINITY;
     std::vector<std::int32_t> members;
     for (std::int32_t g : set) {
@@ -379,11 +406,12 @@ bool MovingContacts::merge_groups_that_met() {
       const auto& mine = groups_[std::size_t(g)]->members();
       members.insert(members.end(), mine.begin(), mine.end());
       groups_[std::size_t(g)]->release();
-      groups_[std::size_t(g)].reset();
     }
+    std::unique_ptr<Group> merged = std::move(groups_[std::size_t(largest)]);
+    for (std::int32_t g : set) groups_[std::size_t(g)].reset();
     stats_.redone_groups += std::int64_t(set.size());
-    groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
-    groups_.back()->begin(start, members);
+    groups_.push_back(std::move(merged));
+    groups_.back()->carry_on(std::int32_t(groups_.size() - 1), start, members);
   }
   return true;
 }

@@ -24,10 +24,6 @@ Eigen::Vector3d read(const double* y, int dimension) {
   return x;
 }
 
-void add(double* y, const Eigen::Vector3d& x, int dimension) {
-  for (int k = 0; k < dimension; ++k) y[k] += x(k);
-}
-
 }  // namespace
 
 void MovingContacts::Group::add_member(std::int32_t body) {
@@ -82,7 +78,51 @@ void MovingContacts::Group::begin(double start, const std::vector<std::int32_t>&
   start_ = time_ = start;
   dimension_ = world_.geometry_.dimension;
   for (std::int32_t body : members) add_member(body);
-  restart(start);
+}
+
+void MovingContacts::Group::carry_on(std::int32_t id, double start,
+                                     const std::vector<std::int32_t>& members) {
+  // its former members not taken by another group yet are marked, their owner kept aside
+  constexpr std::int32_t kFormerMember = -3;
+  std::vector<std::int32_t> former;
+  former.swap(members_);
+  std::vector<std::int32_t> former_owner(former.size());
+  for (std::size_t m = 0; m < former.size(); ++m) {
+    Body& b = world_.bodies_[std::size_t(former[m])];
+    former_owner[m] = b.owner;
+    if (b.owner < 0) b.owner = kFormerMember;
+  }
+  id_ = id;
+  start_ = time_ = start;
+  position_.clear();
+  velocity_.clear();
+  // its former members first, already paired among themselves; then the new ones
+  for (std::int32_t body : members)
+    if (world_.bodies_[std::size_t(body)].owner == kFormerMember) add_member(body);
+  paired_members_ = members_.size();
+  for (std::int32_t body : members)
+    if (world_.bodies_[std::size_t(body)].owner != id_) add_member(body);
+  for (std::size_t m = 0; m < former.size(); ++m) {
+    Body& b = world_.bodies_[std::size_t(former[m])];
+    if (b.owner == kFormerMember) b.owner = former_owner[m];
+  }
+  // the contacts among those it keeps, as the world last committed them
+  auto mine = [&](std::int32_t body) {
+    return body < 0 || world_.bodies_[std::size_t(body)].owner == id_;
+  };
+  std::erase_if(contacts_,
+                [&](const Contact& c) { return !mine(c.first_body) || !mine(c.second_body); });
+  for (Contact& c : contacts_) {
+    const MovingContact* record =
+        c.world_id >= 0 ? &world_.contacts_[std::size_t(c.world_id)] : nullptr;
+    c.loaded = record && record->joined;
+    c.max_compression = record ? record->max_compression : 0.0;
+    c.impulse = record ? record->impulse : 0.0;
+    c.max_force = record ? record->max_force : 0.0;
+    c.time_of_max_force = record ? record->time_of_max_force : 0.0;
+    c.dissipated = record ? record->dissipated : 0.0;
+  }
+  last_step_ = 0.0;  // from its members' steps, as a group formed anew
 }
 
 void MovingContacts::Group::begin_collision(double start, std::int32_t first, std::int32_t second) {
@@ -97,7 +137,6 @@ void MovingContacts::Group::begin_collision(double start, std::int32_t first, st
       c.loaded = true;
       c.max_compression = 0.0;
     }
-  restart(start);
 }
 
 // The integration started again at t from the members' positions and velocities there: the
@@ -116,8 +155,10 @@ void MovingContacts::Group::restart(double t) {
       if (world_.bodies_[std::size_t(other)].owner < 0)  // another group's: checked at the end
         watched_.push_back({std::int32_t(m), other});
   active_.clear();
+  springs_.clear();
   scanned_.clear();
   elastic_.clear();
+  const double time_scale = world_.time_scale_;
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
     c.first = world_.bodies_[std::size_t(c.first_body)].slot;
@@ -126,6 +167,18 @@ void MovingContacts::Group::restart(double t) {
     if (c.elastic || c.loaded) {
       c.slot = std::int32_t(active_.size());
       active_.push_back(std::int32_t(i));
+      springs_.push_back(
+          {.first = c.first,
+           .second = c.second,
+           .slot = c.slot,
+           .reach = c.reach,
+           .first_gain = time_scale * world_.bodies_[std::size_t(c.first_body)].inverse_mass,
+           .second_gain =
+               c.second_body < 0
+                   ? 0.0
+                   : time_scale * world_.bodies_[std::size_t(c.second_body)].inverse_mass,
+           .law = c.law,
+           .max_compression = c.max_compression});
     }
     (c.elastic ? elastic_ : scanned_).push_back(std::int32_t(i));
   }
@@ -175,35 +228,43 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
   const int d = dimension_;
   const std::size_t velocities = std::size_t(d) * members_.size();
   // in the state's units: x' = w / T, w' = T a, q' = T F / m (moving_contacts.hpp)
-  const double time_scale = world_.time_scale_;
-  const double impulse_rate = time_scale / world_.mass_scale_;
-  for (std::size_t i = 0; i < velocities; ++i) dydt[i] = y[velocities + i] / time_scale;
-  std::fill(dydt + velocities, dydt + 2 * velocities, 0.0);
-  for (std::int32_t index : active_) {
-    const Contact& c = contacts_[std::size_t(index)];
-    const std::size_t a = std::size_t(c.first);
-    const Eigen::Vector3d xa = origin_[a] + read(y + d * a, d);
-    const double inverse_mass_a =
-        time_scale * world_.bodies_[std::size_t(c.first_body)].inverse_mass;
+  const double inverse_time_scale = 1.0 / world_.time_scale_;
+  const double impulse_rate = world_.time_scale_ / world_.mass_scale_;
+  for (std::size_t i = 0; i < velocities; ++i) dydt[i] = y[velocities + i] * inverse_time_scale;
+  double* acceleration = dydt + velocities;
+  double* impulse = dydt + 2 * velocities;
+  std::fill(acceleration, acceleration + velocities, 0.0);
+  for (const Spring& s : springs_) {
+    const std::size_t a = std::size_t(d) * std::size_t(s.first);
+    const double* origin_a = origin_[std::size_t(s.first)].data();
     double force;
-    if (c.second >= 0) {
-      const std::size_t b = std::size_t(c.second);
-      const Eigen::Vector3d between = origin_[b] + read(y + d * b, d) - xa;
-      const double distance = between.norm();
-      force = numerics::hysteresis_force(c.law, c.reach - distance, c.max_compression);
+    if (s.second >= 0) {
+      const std::size_t b = std::size_t(d) * std::size_t(s.second);
+      const double* origin_b = origin_[std::size_t(s.second)].data();
+      double between[3], squared = 0.0;
+      for (int k = 0; k < d; ++k) {
+        between[k] = origin_b[k] + y[b + k] - (origin_a[k] + y[a + k]);
+        squared += between[k] * between[k];
+      }
+      const double distance = std::sqrt(squared);
+      force = numerics::hysteresis_force(s.law, s.reach - distance, s.max_compression);
       if (force != 0.0) {
-        const Eigen::Vector3d push = (force / distance) * between;
-        add(dydt + velocities + d * a, -inverse_mass_a * push, d);
-        add(dydt + velocities + d * b,
-            time_scale * world_.bodies_[std::size_t(c.second_body)].inverse_mass * push, d);
+        const double push = force / distance;
+        for (int k = 0; k < d; ++k) {
+          acceleration[a + k] -= s.first_gain * push * between[k];
+          acceleration[b + k] += s.second_gain * push * between[k];
+        }
       }
     } else {
-      const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
-      force = numerics::hysteresis_force(c.law, c.reach - wall.normal.dot(xa - wall.point),
-                                         c.max_compression);
-      if (force != 0.0) add(dydt + velocities + d * a, inverse_mass_a * force * wall.normal, d);
+      const Plane& wall = world_.geometry_.walls[std::size_t(-1 - s.second)];
+      double height = 0.0;
+      for (int k = 0; k < d; ++k)
+        height += wall.normal(k) * (origin_a[k] + y[a + k] - wall.point(k));
+      force = numerics::hysteresis_force(s.law, s.reach - height, s.max_compression);
+      if (force != 0.0)
+        for (int k = 0; k < d; ++k) acceleration[a + k] += s.first_gain * force * wall.normal(k);
     }
-    dydt[2 * velocities + std::size_t(c.slot)] = impulse_rate * force;
+    impulse[s.slot] = impulse_rate * force;
   }
 }
 
@@ -219,24 +280,38 @@ void sphere_gap(const Eigen::Vector3d& xa, const Eigen::Vector3d& va, const Eige
   rate = between.dot(vb - va) / distance;
 }
 
-// the same against a wall
-void wall_gap(const Plane& wall, const Eigen::Vector3d& xa, const Eigen::Vector3d& va, double reach,
-              double& gap, double& rate) {
-  gap = wall.normal.dot(xa - wall.point) - reach;
-  rate = wall.normal.dot(va);
-}
-
 }  // namespace
 
+// On every elastic contact at every step: read from the state directly.
 void MovingContacts::Group::contact_gap(const Contact& c, const double* y, double& gap,
                                         double& rate) const {
-  Eigen::Vector3d xa, va;
-  member_state(std::size_t(c.first), y, xa, va);
-  if (c.second < 0)
-    return wall_gap(world_.geometry_.walls[std::size_t(-1 - c.second)], xa, va, c.reach, gap, rate);
-  Eigen::Vector3d xb, vb;
-  member_state(std::size_t(c.second), y, xb, vb);
-  sphere_gap(xa, va, xb, vb, c.reach, gap, rate);
+  const int d = dimension_;
+  const std::size_t velocities = std::size_t(d) * members_.size();
+  const std::size_t a = std::size_t(d) * std::size_t(c.first);
+  const double* origin_a = origin_[std::size_t(c.first)].data();
+  const double inverse_time_scale = 1.0 / world_.time_scale_;
+  if (c.second < 0) {
+    const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
+    double height = 0.0, speed = 0.0;
+    for (int k = 0; k < d; ++k) {
+      height += wall.normal(k) * (origin_a[k] + y[a + k] - wall.point(k));
+      speed += wall.normal(k) * y[velocities + a + k];
+    }
+    gap = height - c.reach;
+    rate = speed * inverse_time_scale;
+    return;
+  }
+  const std::size_t b = std::size_t(d) * std::size_t(c.second);
+  const double* origin_b = origin_[std::size_t(c.second)].data();
+  double between[3], squared = 0.0, closing = 0.0;
+  for (int k = 0; k < d; ++k) {
+    between[k] = origin_b[k] + y[b + k] - (origin_a[k] + y[a + k]);
+    squared += between[k] * between[k];
+    closing += between[k] * (y[velocities + b + k] - y[velocities + a + k]);
+  }
+  const double distance = std::sqrt(squared);
+  gap = distance - c.reach;
+  rate = closing * inverse_time_scale / distance;
 }
 
 void MovingContacts::Group::watch_gap(const Watch& w, double t, const double* y, double& gap,
@@ -472,12 +547,13 @@ void MovingContacts::Group::commit() {
     b.time = time_;
     b.owner = b.slot = -1;
     b.step_hint = last_step_;
+    b.last_window = world_.stats_.windows;
+    b.last_group = id_;
   }
-  for (const Contact& c : contacts_) {
+  for (Contact& c : contacts_) {
     if (c.world_id < 0 && c.impulse == 0.0 && !c.loaded) continue;  // never touched
-    const std::int32_t id =
-        c.world_id >= 0 ? c.world_id : world_.contact_id(c.first_body, c.second_body);
-    MovingContact& record = world_.contacts_[std::size_t(id)];
+    if (c.world_id < 0) c.world_id = world_.contact_id(c.first_body, c.second_body);
+    MovingContact& record = world_.contacts_[std::size_t(c.world_id)];
     if (record.max_force == 0.0 && c.max_force > 0.0) ++world_.stats_.contacts_loaded;
     record.joined = c.loaded;
     record.max_compression = c.max_compression;
@@ -488,7 +564,7 @@ void MovingContacts::Group::commit() {
     record.dissipated = c.dissipated;
     record.stored_energy =
         c.loaded ? numerics::hysteresis_energy(c.law, c.compression, c.max_compression) : 0.0;
-    if (c.loaded) world_.loaded_ids_.push_back(id);
+    if (c.loaded) world_.loaded_ids_.push_back(c.world_id);
   }
 }
 

@@ -120,6 +120,11 @@ class MovingContacts {
   void form_groups();
   void form_collision_groups(double end);
   bool merge_groups_that_met();
+  // a group for this window, numbered in groups_
+  Group& new_group();
+  // The group of the window before that committed most of `members`, taken from
+  // previous_groups_ (null if none is left).
+  std::unique_ptr<Group> take_previous_group(const std::vector<std::int32_t>& members);
   double next_meeting(double target) const;
   void note_moving(std::int32_t body);
   // the record of the contact of the two (a body and -1 - wall), made if there is none
@@ -138,6 +143,8 @@ class MovingContacts {
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> contacts_of_;
   std::vector<std::int32_t> loaded_ids_;  // contacts carrying force now
   std::vector<std::unique_ptr<Group>> groups_;
+  std::vector<std::unique_ptr<Group>> previous_groups_;  // the window before's, while forming
+  std::vector<std::int32_t> votes_;  // per previous group: members of a component it committed
   double time_ = 0.0;
   double speed_bound_ = 0.0;  // m/s: no body moves faster (the energy is all it can have)
   double window_ = 0.0;       // s
