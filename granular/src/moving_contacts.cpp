@@ -267,14 +267,19 @@ void MovingContacts::refresh_lists(double end) {
 // enough to meet within the window.
 void MovingContacts::form_groups() {
   if (loaded_ids_.empty()) return;
+  // each body once (slot, -1 between windows, marks it), in memory order
   std::vector<std::int32_t> loaded_bodies;
+  auto note = [&](std::int32_t body) {
+    if (bodies_[std::size_t(body)].slot != -1) return;
+    bodies_[std::size_t(body)].slot = 0;
+    loaded_bodies.push_back(body);
+  };
   for (std::int32_t id : loaded_ids_) {
     const MovingContact& c = contacts_[std::size_t(id)];
-    loaded_bodies.push_back(c.first);
-    if (!c.wall()) loaded_bodies.push_back(c.second);
+    note(c.first);
+    if (!c.wall()) note(c.second);
   }
   std::sort(loaded_bodies.begin(), loaded_bodies.end());
-  loaded_bodies.erase(std::unique(loaded_bodies.begin(), loaded_bodies.end()), loaded_bodies.end());
   for (std::size_t i = 0; i < loaded_bodies.size(); ++i)
     bodies_[std::size_t(loaded_bodies[i])].slot = std::int32_t(i);  // index in loaded_bodies
   Components components(loaded_bodies.size());
