@@ -163,7 +163,6 @@ RecordingBudget compliant_budget(const ContactModel& model, const RecordSpec& re
 // issue 24) a chain's late, slow recontacts moved its beads by 5e-11 of the strike's speed,
 // which the tightest tolerances resolve (tests/packings/test_packing_reduction.cpp).
 constexpr double kOverlapResolution = 1e-12;
-constexpr double kLoosestTolerance = 1e-4;
 
 // The impact's overlap, or the static one of a precompressed scene struck by nothing.
 double overlap_scale(const ContactModel& model) {
@@ -217,9 +216,7 @@ struct CompliantTolerances {
 };
 
 CompliantTolerances compliant_tolerances(const ContactModel& model, const CompliantSpec& spec) {
-  // Looser than kLoosestTolerance, the integration's velocity errors set off collisions in the
-  // wake of the wave that cost more steps than the looser control saves.
-  const double tolerance = std::min(spec.tolerance, kLoosestTolerance);
+  const double tolerance = spec.tolerance;  // within [1e-14, 1e-4] (CompliantSpec)
   // A contact approaching at tolerance x V holds tolerance^(2 / (1 + eta)) of the impact's
   // overlap: overlaps up to ten times that are the integration's own error (its velocities
   // carry tolerance x V), not worth integrating.
