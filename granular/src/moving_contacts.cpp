@@ -202,15 +202,21 @@ MovingContacts::Group& MovingContacts::new_group() {
 
 std::unique_ptr<MovingContacts::Group> MovingContacts::take_previous_group(
     const std::vector<std::int32_t>& members) {
-  votes_.assign(previous_groups_.size(), 0);
+  // votes_ is all zeros between calls: only the groups voted for are counted and reset
+  votes_.resize(previous_groups_.size(), 0);
+  std::int32_t best = -1;
+  std::vector<std::int32_t> voted;
   for (std::int32_t body : members) {
     const Body& b = bodies_[std::size_t(body)];
-    if (b.last_window == stats_.windows - 1 && previous_groups_[std::size_t(b.last_group)])
-      ++votes_[std::size_t(b.last_group)];
+    if (b.last_window != stats_.windows - 1 || !previous_groups_[std::size_t(b.last_group)])
+      continue;
+    if (votes_[std::size_t(b.last_group)]++ == 0) voted.push_back(b.last_group);
+    if (best < 0 || votes_[std::size_t(b.last_group)] > votes_[std::size_t(best)])
+      best = b.last_group;
   }
-  const auto best = std::max_element(votes_.begin(), votes_.end());
-  if (best == votes_.end() || *best == 0) return nullptr;
-  return std::move(previous_groups_[std::size_t(best - votes_.begin())]);
+  for (std::int32_t g : voted) votes_[std::size_t(g)] = 0;
+  if (best < 0) return nullptr;
+  return std::move(previous_groups_[std::size_t(best)]);
 }
 
 void MovingContacts::run_window(double end) {

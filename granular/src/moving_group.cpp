@@ -35,23 +35,27 @@ void MovingContacts::Group::add_member(std::int32_t body) {
   velocity_.push_back(b.v);
 }
 
+void MovingContacts::Group::recall(Contact& c) const {
+  const MovingContact* record =
+      c.world_id >= 0 ? &world_.contacts_[std::size_t(c.world_id)] : nullptr;
+  c.loaded = record && record->joined;
+  c.max_compression = record ? record->max_compression : 0.0;
+  c.impulse = record ? record->impulse : 0.0;
+  c.max_force = record ? record->max_force : 0.0;
+  c.time_of_max_force = record ? record->time_of_max_force : 0.0;
+  c.dissipated = record ? record->dissipated : 0.0;
+}
+
 void MovingContacts::Group::add_contact(std::int32_t first_body, std::int32_t second_body) {
   if (second_body >= 0 && second_body < first_body) std::swap(first_body, second_body);
   Contact c;
   c.world_id = world_.find_contact_id(first_body, second_body);
-  if (c.world_id >= 0) {  // as the world last committed it
-    const MovingContact& record = world_.contacts_[std::size_t(c.world_id)];
-    c.law = record.law;
-    c.loaded = record.joined;
-    c.max_compression = record.max_compression;
-    c.impulse = record.impulse;
-    c.max_force = record.max_force;
-    c.time_of_max_force = record.time_of_max_force;
-    c.dissipated = record.dissipated;
-  } else {
+  if (c.world_id >= 0)
+    c.law = world_.contacts_[std::size_t(c.world_id)].law;
+  else
     c.law = second_body >= 0 ? world_.geometry_.bead_law(first_body, second_body)
                              : world_.geometry_.wall_law(first_body, std::size_t(-1 - second_body));
-  }
+  recall(c);
   c.elastic = c.law.effective_restitution() >= 1.0;
   c.first_body = first_body;
   c.second_body = second_body;
@@ -112,16 +116,7 @@ void MovingContacts::Group::carry_on(std::int32_t id, double start,
   };
   std::erase_if(contacts_,
                 [&](const Contact& c) { return !mine(c.first_body) || !mine(c.second_body); });
-  for (Contact& c : contacts_) {
-    const MovingContact* record =
-        c.world_id >= 0 ? &world_.contacts_[std::size_t(c.world_id)] : nullptr;
-    c.loaded = record && record->joined;
-    c.max_compression = record ? record->max_compression : 0.0;
-    c.impulse = record ? record->impulse : 0.0;
-    c.max_force = record ? record->max_force : 0.0;
-    c.time_of_max_force = record ? record->time_of_max_force : 0.0;
-    c.dissipated = record ? record->dissipated : 0.0;
-  }
+  for (Contact& c : contacts_) recall(c);
   last_step_ = 0.0;  // from its members' steps, as a group formed anew
 }
 

@@ -112,6 +112,8 @@ class MovingContacts::Group {
   };
 
   void add_member(std::int32_t body);
+  // c's state as the world last committed it (world_id), or that of a contact never loaded
+  void recall(Contact& c) const;
   // the contact of the two (a body and -1 - wall), as the world last committed it or new
   void add_contact(std::int32_t first_body, std::int32_t second_body);
   // the contacts of the members that joined since the last call with the other members and
