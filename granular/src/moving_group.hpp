@@ -59,6 +59,7 @@ class MovingContacts::Group {
   double start() const { return start_; }
   // the bodies it owns: those it started with, then those it took as they touched it
   const std::vector<std::int32_t>& members() const { return members_; }
+  double last_step() const { return last_step_; }  // s, 0 before its first
   // position (m) of member slot `m` at the end of its integration
   Eigen::Vector3d final_position(std::int32_t slot) const;
 

@@ -82,8 +82,8 @@ struct MovingContactsStats {
 // Dormand-Prince 5(4), with its own steps. Elastic contacts are smooth forces of the positions
 // and need no event; a group restarts only at its own events (a body it takes, an inelastic
 // contact joining, leaving, or turning to unload), located with dense output (TOMS 748). Groups
-// meet only at the ends of short windows (a quarter of the quickest contact's duration): a window
-// in which two groups touched, or took the same body, is integrated again for them as one.
+// meet only at the ends of short windows (under a third of the quickest contact's duration): a
+// window in which two groups touched, or took the same body, is integrated again for them as one.
 class MovingContacts {
  public:
   using Options = MovingContactsOptions;
@@ -117,7 +117,7 @@ class MovingContacts {
 
   void run_window(double end);
   void refresh_lists(double end);
-  void form_groups();
+  void form_groups(double end);
   void form_collision_groups(double end);
   bool merge_groups_that_met();
   // a group for this window, numbered in groups_
@@ -126,6 +126,7 @@ class MovingContacts {
   // previous_groups_ (null if none is left).
   std::unique_ptr<Group> take_previous_group(const std::vector<std::int32_t>& members);
   double next_meeting(double target) const;
+  double next_window() const;  // s: the length of the next window
   void note_moving(std::int32_t body);
   // the record of the contact of the two (a body and -1 - wall), made if there is none
   std::int32_t contact_id(std::int32_t first, std::int32_t second);
@@ -147,8 +148,9 @@ class MovingContacts {
   std::vector<std::int32_t> votes_;  // per previous group: members of a component it committed
   double time_ = 0.0;
   double speed_bound_ = 0.0;  // m/s: no body moves faster (the energy is all it can have)
-  double window_ = 0.0;       // s
-  double first_step_ = 0.0;   // s, of a group that starts from nothing
+  double window_ = 0.0;       // s, of the next window
+  double longest_window_ = 0.0, shortest_window_ = 0.0;  // s
+  double first_step_ = 0.0;                              // s, of a group that starts from nothing
   // The units of a group's state (docs/model.md, section 17): velocities are integrated as
   // time_scale_ v (m) and impulses as time_scale_ p / mass_scale_ (m), so that one absolute
   // tolerance weighs a position, a velocity and an impulse alike at the quickest contact's
