@@ -19,7 +19,7 @@
 #include "mimpact/plugins/internal/mass_block.hpp"
 
 namespace mimpact::numerics::internal {
-class DenseOutput;  // Boost.Odeint's Dormand-Prince: only compliant_integrator.cpp compiles it
+class DenseOutput;  // Dormand-Prince 5(4): only compliant_integrator.cpp compiles it
 }
 
 namespace mimpact::plugins {

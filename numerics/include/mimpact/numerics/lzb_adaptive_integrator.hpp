@@ -48,7 +48,7 @@ struct LzbAdaptiveOptions {
 
 // The LZB impact integrated as its continuous limit (docs/model.md, section 10): per contact
 // the energy coordinate delta_j, with dP_j/dt = K_j delta_j^eta_j and du/dt = H dP/dt, by
-// Dormand-Prince 5(4) with error control (Boost.Odeint) to LzbAdaptiveOptions::tolerance.
+// Dormand-Prince 5(4) with error control (Odeint's controller) to LzbAdaptiveOptions::tolerance.
 // The same model as the impulse steps of LzbImpulseIntegrator (mono- and bi-stiffness, any
 // eta, e from 0 to 1, LZB's re-loading rule), without their first-order error in delta_p:
 // every switch of the right-hand side (a contact joins, its compression ends, it re-loads, it

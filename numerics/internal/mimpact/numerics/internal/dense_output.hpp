@@ -1,17 +1,30 @@
 #pragma once
 
-#include <boost/numeric/odeint.hpp>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "mimpact/numerics/ode_options.hpp"
 
 namespace mimpact::numerics::internal {
 
-// Dormand-Prince 5(4) with error control and dense output (Boost.Odeint) on a flat state:
-// after each step the state is known at every time of the step, for the event search. The
-// state may change size at a restart: an integrator that carries only the bodies or contacts
-// taking part restarts with a new set after an event.
+// Dormand-Prince 5(4) with error control and dense output on a flat state (Dormand & Prince,
+// J. Comput. Appl. Math. 6, 1980; the continuous extension of Hairer, Norsett & Wanner, Solving
+// Ordinary Differential Equations I, section II.6): after each step the state is known at every
+// time of the step, for the event search. The state may change size at a restart: an integrator
+// that carries only the bodies or contacts taking part restarts with a new set after an event.
+//
+// The step, its error control and its interpolation are Boost.Odeint's runge_kutta_dopri5 in
+// its dense-output controller, operation for operation (a run gives the same numbers), with
+// what the moving geometry needs and Odeint cannot give: components outside the error control
+// (quadratures: q' = g(y), read by no derivative, such as a contact's impulse, the integral of
+// its force) that the stages do not form, and one component at a time out of the dense output
+// (a group's event search reads the few bodies it watches, not its whole state).
 class DenseOutput {
  public:
   using State = std::vector<double>;
@@ -19,16 +32,24 @@ class DenseOutput {
   explicit DenseOutput(const OdeOptions& options)
       : DenseOutput(options.absolute_tolerance, options.relative_tolerance, options.max_step) {}
 
-  // Error control to absolute + relative * |y| per component; max_step 0: no limit.
+  // Error control to absolute + relative (|y| + h |y'|) per component, the largest of the
+  // ratios below 1; max_step 0: no limit.
   DenseOutput(double absolute_tolerance, double relative_tolerance, double max_step = 0.0)
-      : dense_(max_step > 0.0 ? boost::numeric::odeint::make_dense_output(
-                                    absolute_tolerance, relative_tolerance, max_step, Stepper())
-                              : boost::numeric::odeint::make_dense_output(
-                                    absolute_tolerance, relative_tolerance, Stepper())) {}
+      : absolute_(absolute_tolerance), relative_(relative_tolerance), max_step_(max_step) {}
 
-  // Starts again from (t, y), with a first step of `first_step`.
-  void restart(const State& y, double t, double first_step) {
-    dense_.initialize(y, t, first_step);
+  // Starts again from (t, y), with a first step of `first_step`. The components from
+  // `controlled` on are quadratures (above), integrated with the same weights.
+  void restart(const State& y, double t, double first_step, std::size_t controlled = kAll) {
+    current_ = 0;
+    y_[0] = y;
+    y_[1].resize(y.size());
+    for (State& k : dydt_) k.resize(y.size());
+    for (State& k : stage_) k.resize(y.size());
+    probe_.resize(y.size());
+    controlled_ = std::min(controlled, y.size());
+    time_ = t;
+    next_step_ = first_step;
+    derivative_known_ = false;
     started_ = true;
   }
   // Marks the motion as changed: the next step must restart it.
@@ -37,31 +58,171 @@ class DenseOutput {
 
   // One step of y' = rhs(y, dydt, t) from time(): [previous time, time()] becomes known.
   template <class Rhs>
-  void step(Rhs&& rhs) {
-    const auto [from, to] = dense_.do_step(rhs);
-    last_step_ = to - from;
-    ++steps_;
-  }
+  void step(Rhs&& rhs);
 
-  double time() const { return dense_.current_time(); }
-  const State& state() const { return dense_.current_state(); }
+  double time() const { return time_; }
+  const State& state() const { return y_[current_]; }
   // The state at a time of the last step.
-  void state_at(double t, State& y) const { dense_.calc_state(t, y); }
+  void state_at(double t, State& y) const {
+    const Weights w = weights_at(t);
+    y.resize(y_[current_].size());
+    for (std::size_t i = 0; i < y.size(); ++i) y[i] = interpolate(w, i);
+  }
+  // The weights of the continuous extension at a time of the last step, for component_at.
+  struct Weights {
+    std::array<double, 6> of{};  // h b_i(theta) of k1, k3, k4, k5, k6, k7 (b_2(theta) = 0)
+  };
+  Weights weights_at(double t) const;
+  // Component i of the state at the weights' time: the same number as state_at gives.
+  double component_at(const Weights& w, std::size_t i) const { return interpolate(w, i); }
   // The length of the last step (s), 0 before the first.
   double last_step() const { return last_step_; }
   // Steps taken since construction.
   std::int64_t steps() const { return steps_; }
 
  private:
-  using Stepper = boost::numeric::odeint::runge_kutta_dopri5<
-      State, double, State, double, boost::numeric::odeint::range_algebra,
-      boost::numeric::odeint::default_operations, boost::numeric::odeint::always_resizer>;
-  using Dense = boost::numeric::odeint::result_of::make_dense_output<Stepper>::type;
+  static constexpr std::size_t kAll = std::size_t(-1);
+  // failed attempts at one step before the step size is deemed unable to reach the tolerance
+  static constexpr int kMostFailures = 500;
 
-  Dense dense_;
+  // the stages k2..k6 and the error estimate of a step of h from the current state into the
+  // other buffer, with its derivative there (k7); returns the largest error ratio
+  template <class Rhs>
+  double attempt(Rhs& rhs, double h);
+  double interpolate(const Weights& w, std::size_t i) const {
+    const State& y0 = y_[1 - current_];
+    const State& k1 = dydt_[1 - current_];
+    const State& k7 = dydt_[current_];
+    return 1.0 * y0[i] + w.of[0] * k1[i] + w.of[1] * stage_[1][i] + w.of[2] * stage_[2][i] +
+           w.of[3] * stage_[3][i] + w.of[4] * stage_[4][i] + w.of[5] * k7[i];
+  }
+
+  double absolute_, relative_, max_step_;
+  std::array<State, 2> y_, dydt_;  // the state and its derivative at the step's two ends
+  std::array<State, 5> stage_;     // k2..k6
+  State probe_;                    // the state at a stage
+  std::size_t current_ = 0;        // of y_ and dydt_: the end of the last step
+  std::size_t controlled_ = 0;
+  double time_ = 0.0, previous_time_ = 0.0;
+  double next_step_ = 0.0;
+  bool derivative_known_ = false;
   bool started_ = false;
   double last_step_ = 0.0;
   std::int64_t steps_ = 0;
 };
+
+// The Butcher tableau of Dormand-Prince 5(4): nodes c, stage weights a, the fifth-order
+// weights b and their difference e to the embedded fourth-order ones.
+namespace dopri5 {
+constexpr double c2 = 1.0 / 5.0, c3 = 3.0 / 10.0, c4 = 4.0 / 5.0, c5 = 8.0 / 9.0;
+constexpr double a21 = 1.0 / 5.0;
+constexpr double a31 = 3.0 / 40.0, a32 = 9.0 / 40.0;
+constexpr double a41 = 44.0 / 45.0, a42 = -56.0 / 15.0, a43 = 32.0 / 9.0;
+constexpr double a51 = 19372.0 / 6561.0, a52 = -25360.0 / 2187.0, a53 = 64448.0 / 6561.0,
+                 a54 = -212.0 / 729.0;
+constexpr double a61 = 9017.0 / 3168.0, a62 = -355.0 / 33.0, a63 = 46732.0 / 5247.0,
+                 a64 = 49.0 / 176.0, a65 = -5103.0 / 18656.0;
+constexpr double b1 = 35.0 / 384.0, b3 = 500.0 / 1113.0, b4 = 125.0 / 192.0, b5 = -2187.0 / 6784.0,
+                 b6 = 11.0 / 84.0;
+constexpr double e1 = b1 - 5179.0 / 57600.0, e3 = b3 - 7571.0 / 16695.0, e4 = b4 - 393.0 / 640.0,
+                 e5 = b5 - -92097.0 / 339200.0, e6 = b6 - 187.0 / 2100.0, e7 = -1.0 / 40.0;
+}  // namespace dopri5
+
+template <class Rhs>
+double DenseOutput::attempt(Rhs& rhs, double h) {
+  using namespace dopri5;
+  const State& y = y_[current_];
+  const State& k1 = dydt_[current_];
+  State& out = y_[1 - current_];
+  State& k7 = dydt_[1 - current_];
+  auto& [k2, k3, k4, k5, k6] = stage_;
+  const std::size_t n = controlled_, all = y.size();
+  const double t = time_;
+  // the products h a_ij first, then the sums in the tableau's order (Odeint's scale_sum)
+  for (std::size_t i = 0; i < n; ++i) probe_[i] = 1.0 * y[i] + h * a21 * k1[i];
+  rhs(probe_, k2, t + h * c2);
+  for (std::size_t i = 0; i < n; ++i) probe_[i] = 1.0 * y[i] + h * a31 * k1[i] + h * a32 * k2[i];
+  rhs(probe_, k3, t + h * c3);
+  for (std::size_t i = 0; i < n; ++i)
+    probe_[i] = 1.0 * y[i] + h * a41 * k1[i] + h * a42 * k2[i] + h * a43 * k3[i];
+  rhs(probe_, k4, t + h * c4);
+  for (std::size_t i = 0; i < n; ++i)
+    probe_[i] = 1.0 * y[i] + h * a51 * k1[i] + h * a52 * k2[i] + h * a53 * k3[i] + h * a54 * k4[i];
+  rhs(probe_, k5, t + h * c5);
+  for (std::size_t i = 0; i < n; ++i)
+    probe_[i] = 1.0 * y[i] + h * a61 * k1[i] + h * a62 * k2[i] + h * a63 * k3[i] + h * a64 * k4[i] +
+                h * a65 * k5[i];
+  rhs(probe_, k6, t + h);
+  for (std::size_t i = 0; i < all; ++i)
+    out[i] = 1.0 * y[i] + h * b1 * k1[i] + h * b3 * k3[i] + h * b4 * k4[i] + h * b5 * k5[i] +
+             h * b6 * k6[i];
+  rhs(out, k7, t + h);
+  double largest = 0.0;
+  const double h_abs = 1.0 * std::abs(h);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double error = h * e1 * k1[i] + h * e3 * k3[i] + h * e4 * k4[i] + h * e5 * k5[i] +
+                         h * e6 * k6[i] + h * e7 * k7[i];
+    largest = std::max(
+        largest, std::abs(error) /
+                     (absolute_ + relative_ * (1.0 * std::abs(y[i]) + h_abs * std::abs(k1[i]))));
+  }
+  return largest;
+}
+
+// Odeint's step adjuster: a rejected step shrinks by 0.9 err^(-1/3), at most fivefold; an
+// accepted one with err < 1/2 grows by 0.9 err^(-1/5), at most fivefold; max_step bounds both.
+template <class Rhs>
+void DenseOutput::step(Rhs&& rhs) {
+  if (!derivative_known_) {
+    rhs(y_[current_], dydt_[current_], time_);
+    derivative_known_ = true;
+  }
+  previous_time_ = time_;
+  for (int failures = 0;; ++failures) {
+    if (failures >= kMostFailures)
+      throw std::runtime_error("Dormand-Prince: " + std::to_string(kMostFailures) +
+                               " failed attempts at one step: the tolerance cannot be met");
+    const double h = next_step_;
+    if (max_step_ > 0.0 && !(h <= max_step_)) {
+      next_step_ = max_step_;
+      continue;
+    }
+    const double error = attempt(rhs, h);
+    if (error > 1.0) {
+      next_step_ = h * std::max(0.9 * std::pow(error, -1.0 / 3.0), 1.0 / 5.0);
+      if (max_step_ > 0.0) next_step_ = std::min(next_step_, max_step_);
+      continue;
+    }
+    time_ += h;
+    if (error < 0.5) {
+      next_step_ = h * (0.9 * std::pow(std::max(std::pow(5.0, -5.0), error), -1.0 / 5.0));
+      if (max_step_ > 0.0) next_step_ = std::min(next_step_, max_step_);
+    }
+    break;
+  }
+  current_ = 1 - current_;
+  last_step_ = time_ - previous_time_;
+  ++steps_;
+}
+
+inline DenseOutput::Weights DenseOutput::weights_at(double t) const {
+  using namespace dopri5;
+  const double h = time_ - previous_time_;
+  const double theta = (t - previous_time_) / h;
+  const double X1 = 5.0 * (2558722523.0 - 31403016.0 * theta) / 11282082432.0;
+  const double X3 = 100.0 * (882725551.0 - 15701508.0 * theta) / 32700410799.0;
+  const double X4 = 25.0 * (443332067.0 - 31403016.0 * theta) / 1880347072.0;
+  const double X5 = 32805.0 * (23143187.0 - 3489224.0 * theta) / 199316789632.0;
+  const double X6 = 55.0 * (29972135.0 - 7076736.0 * theta) / 822651844.0;
+  const double X7 = 10.0 * (7414447.0 - 829305.0 * theta) / 29380423.0;
+  const double theta_m_1 = theta - 1.0;
+  const double theta_sq = theta * theta;
+  const double A = theta_sq * (3.0 - 2.0 * theta);
+  const double B = theta_sq * theta_m_1;
+  const double C = theta_sq * theta_m_1 * theta_m_1;
+  const double D = theta * theta_m_1 * theta_m_1;
+  return {{h * (A * b1 - C * X1 + D), h * (A * b3 + C * X3), h * (A * b4 - C * X4),
+           h * (A * b5 + C * X5), h * (A * b6 - C * X6), h * (B + C * X7)}};
+}
 
 }  // namespace mimpact::numerics::internal
