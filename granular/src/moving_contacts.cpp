@@ -290,60 +290,63 @@ void MovingContacts::refresh_lists(double end) {
   stats_.list_refreshes = lists_.refreshes();
 }
 
-// The groups at the window's start: the bodies linked by loaded contacts, and those close
-// enough to meet within the window.
+// The groups at the window's start: the bodies linked by loaded contacts, those close enough
+// to meet within the window, and the halo: bodies flying freely (at rest, ahead of a front)
+// that a group's body may touch within the window join it from the start, so that the group
+// does not restart to take them. A body of the halo of two groups links them: taken by the
+// first alone, it made the partition, and so the steps, depend on the bodies' numbering, and a
+// mirror strike asymmetric to the tolerance.
 void MovingContacts::form_groups(double end) {
   if (loaded_ids_.empty()) return;
-  // each body once (slot, -1 between windows, marks it), in memory order
-  std::vector<std::int32_t> loaded_bodies;
+  // each body once (slot, -1 between windows, marks it: its index in `linked`), in memory order
+  std::vector<std::int32_t> linked;
   auto note = [&](std::int32_t body) {
     if (bodies_[std::size_t(body)].slot != -1) return;
     bodies_[std::size_t(body)].slot = 0;
-    loaded_bodies.push_back(body);
+    linked.push_back(body);
   };
   for (std::int32_t id : loaded_ids_) {
     const MovingContact& c = contacts_[std::size_t(id)];
     note(c.first);
     if (!c.wall()) note(c.second);
   }
-  std::sort(loaded_bodies.begin(), loaded_bodies.end());
-  for (std::size_t i = 0; i < loaded_bodies.size(); ++i)
-    bodies_[std::size_t(loaded_bodies[i])].slot = std::int32_t(i);  // index in loaded_bodies
-  Components components(loaded_bodies.size());
+  std::sort(linked.begin(), linked.end());
+  const std::size_t loaded_count = linked.size();
+  for (std::size_t i = 0; i < loaded_count; ++i)
+    bodies_[std::size_t(linked[i])].slot = std::int32_t(i);
+  // the pairs that may meet within the window: two loaded bodies, or a loaded one and a body of
+  // its halo (numbered after the loaded ones as it is found)
+  const double window = end - time_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  for (std::size_t l = 0; l < loaded_count; ++l) {
+    const std::int32_t i = linked[l];
+    const Body& a = bodies_[std::size_t(i)];
+    for (std::int32_t k : lists_.bodies_near(i)) {
+      Body& b = bodies_[std::size_t(k)];
+      const bool loaded = b.slot >= 0 && std::size_t(b.slot) < loaded_count;
+      if (loaded && k < i) continue;  // the pair once
+      const double gap =
+          (b.position_at(time_) - a.x).norm() - geometry_.radius(i) - geometry_.radius(k);
+      const double reach = 2.0 * (a.v.norm() + b.v.norm()) * window;
+      if (gap >= (loaded ? reach : reach + options_.overlap_resolution)) continue;
+      if (!loaded && b.slot < 0) {
+        b.slot = std::int32_t(linked.size());
+        linked.push_back(k);
+      }
+      pairs.emplace_back(a.slot, b.slot);
+    }
+  }
   for (std::int32_t id : loaded_ids_) {
     const MovingContact& c = contacts_[std::size_t(id)];
     if (!c.wall())
-      components.join(bodies_[std::size_t(c.first)].slot, bodies_[std::size_t(c.second)].slot);
+      pairs.emplace_back(bodies_[std::size_t(c.first)].slot, bodies_[std::size_t(c.second)].slot);
   }
-  const double window = end - time_;
-  for (std::int32_t i : loaded_bodies) {
-    const Body& a = bodies_[std::size_t(i)];
-    for (std::int32_t k : lists_.bodies_near(i)) {
-      const Body& b = bodies_[std::size_t(k)];
-      if (k < i || b.slot < 0) continue;
-      const double gap = (b.x - a.x).norm() - geometry_.radius(i) - geometry_.radius(k);
-      if (gap < 2.0 * (a.v.norm() + b.v.norm()) * window) components.join(a.slot, b.slot);
-    }
-  }
-  std::vector<std::vector<std::int32_t>> members(loaded_bodies.size());
-  for (std::int32_t i : loaded_bodies)
+  Components components(linked.size());
+  for (const auto& [p, q] : pairs) components.join(p, q);
+  std::vector<std::vector<std::int32_t>> members(linked.size());
+  for (std::int32_t i : linked)
     members[std::size_t(components.find(bodies_[std::size_t(i)].slot))].push_back(i);
-  // the halo: bodies flying freely (at rest, ahead of a front) that a group's body may touch
-  // within the window join it from the start, so that the group does not restart to take them
-  for (std::int32_t i : loaded_bodies) {
-    const Body& a = bodies_[std::size_t(i)];
-    auto& group = members[std::size_t(components.find(a.slot))];
-    for (std::int32_t k : lists_.bodies_near(i)) {
-      Body& b = bodies_[std::size_t(k)];
-      if (b.slot >= 0 || b.owner != -1) continue;  // in a group, or in a halo already
-      const double gap =
-          (b.position_at(time_) - a.x).norm() - geometry_.radius(i) - geometry_.radius(k);
-      if (gap > 2.0 * (a.v.norm() + b.v.norm()) * window + options_.overlap_resolution) continue;
-      b.owner = -2;  // taken by this halo; begin() makes it the group's
-      group.push_back(k);
-    }
-  }
-  for (std::int32_t i : loaded_bodies) bodies_[std::size_t(i)].slot = -1;
+  for (std::int32_t i : linked) bodies_[std::size_t(i)].slot = -1;
   for (std::size_t c = 0; c < members.size(); ++c) {
     if (members[c].empty()) continue;
     if (std::unique_ptr<Group> carried = take_previous_group(members[c])) {

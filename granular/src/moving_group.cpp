@@ -162,18 +162,24 @@ void MovingContacts::Group::restart(double t) {
     if (c.elastic || c.loaded) {
       c.slot = std::int32_t(active_.size());
       active_.push_back(std::int32_t(i));
-      springs_.push_back(
-          {.first = c.first,
-           .second = c.second,
-           .slot = c.slot,
-           .reach = c.reach,
-           .first_gain = time_scale * world_.bodies_[std::size_t(c.first_body)].inverse_mass,
-           .second_gain =
-               c.second_body < 0
-                   ? 0.0
-                   : time_scale * world_.bodies_[std::size_t(c.second_body)].inverse_mass,
-           .law = c.law,
-           .max_compression = c.max_compression});
+      Spring& s = springs_.emplace_back(Spring{
+          .first = c.first,
+          .second = c.second,
+          .slot = c.slot,
+          .reach = c.reach,
+          .first_gain = time_scale * world_.bodies_[std::size_t(c.first_body)].inverse_mass,
+          .second_gain = c.second_body < 0
+                             ? 0.0
+                             : time_scale * world_.bodies_[std::size_t(c.second_body)].inverse_mass,
+          .law = c.law,
+          .max_compression = c.max_compression});
+      if (c.second >= 0) {
+        s.offset = origin_[std::size_t(c.second)] - origin_[std::size_t(c.first)];
+      } else {
+        const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
+        s.offset = wall.normal;
+        s.height = wall.normal.dot(origin_[std::size_t(c.first)] - wall.point);
+      }
     }
     (c.elastic ? elastic_ : scanned_).push_back(std::int32_t(i));
   }
@@ -220,8 +226,14 @@ void MovingContacts::Group::member_state(std::size_t slot, const double* y, Eige
 }
 
 void MovingContacts::Group::rhs(const double* y, double* dydt) {
-  const int d = dimension_;
-  const std::size_t velocities = std::size_t(d) * members_.size();
+  if (dimension_ == 3) return rhs_in<3>(y, dydt);
+  rhs_in<2>(y, dydt);
+}
+
+// The right-hand side with the dimension known to the compiler: it is most of a run's time.
+template <int D>
+void MovingContacts::Group::rhs_in(const double* y, double* dydt) const {
+  const std::size_t velocities = std::size_t(D) * members_.size();
   // in the state's units: x' = w / T, w' = T a, q' = T F / m (moving_contacts.hpp)
   const double inverse_time_scale = 1.0 / world_.time_scale_;
   const double impulse_rate = world_.time_scale_ / world_.mass_scale_;
@@ -230,34 +242,32 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
   double* impulse = dydt + 2 * velocities;
   std::fill(acceleration, acceleration + velocities, 0.0);
   for (const Spring& s : springs_) {
-    const std::size_t a = std::size_t(d) * std::size_t(s.first);
-    const double* origin_a = origin_[std::size_t(s.first)].data();
+    const double* ya = y + std::size_t(D) * std::size_t(s.first);
+    double* aa = acceleration + std::size_t(D) * std::size_t(s.first);
     double force;
     if (s.second >= 0) {
-      const std::size_t b = std::size_t(d) * std::size_t(s.second);
-      const double* origin_b = origin_[std::size_t(s.second)].data();
-      double between[3], squared = 0.0;
-      for (int k = 0; k < d; ++k) {
-        between[k] = origin_b[k] + y[b + k] - (origin_a[k] + y[a + k]);
+      const double* yb = y + std::size_t(D) * std::size_t(s.second);
+      double between[D], squared = 0.0;
+      for (int k = 0; k < D; ++k) {
+        between[k] = s.offset[k] + (yb[k] - ya[k]);
         squared += between[k] * between[k];
       }
       const double distance = std::sqrt(squared);
       force = numerics::hysteresis_force(s.law, s.reach - distance, s.max_compression);
       if (force != 0.0) {
+        double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
         const double push = force / distance;
-        for (int k = 0; k < d; ++k) {
-          acceleration[a + k] -= s.first_gain * push * between[k];
-          acceleration[b + k] += s.second_gain * push * between[k];
+        for (int k = 0; k < D; ++k) {
+          aa[k] -= s.first_gain * push * between[k];
+          ab[k] += s.second_gain * push * between[k];
         }
       }
-    } else {
-      const Plane& wall = world_.geometry_.walls[std::size_t(-1 - s.second)];
-      double height = 0.0;
-      for (int k = 0; k < d; ++k)
-        height += wall.normal(k) * (origin_a[k] + y[a + k] - wall.point(k));
+    } else {  // offset: the wall's normal; height: the origin's above the wall
+      double height = s.height;
+      for (int k = 0; k < D; ++k) height += s.offset[k] * ya[k];
       force = numerics::hysteresis_force(s.law, s.reach - height, s.max_compression);
       if (force != 0.0)
-        for (int k = 0; k < d; ++k) acceleration[a + k] += s.first_gain * force * wall.normal(k);
+        for (int k = 0; k < D; ++k) aa[k] += s.first_gain * force * s.offset[k];
     }
     impulse[s.slot] = impulse_rate * force;
   }
@@ -288,8 +298,9 @@ void MovingContacts::Group::contact_gap(const Contact& c, const double* y, doubl
   if (c.second < 0) {
     const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
     double height = 0.0, speed = 0.0;
-    for (int k = 0; k < d; ++k) {
-      height += wall.normal(k) * (origin_a[k] + y[a + k] - wall.point(k));
+    height = wall.normal.dot(origin_[std::size_t(c.first)] - wall.point);
+    for (int k = 0; k < d; ++k) {  // as the right-hand side forms it
+      height += wall.normal(k) * y[a + k];
       speed += wall.normal(k) * y[velocities + a + k];
     }
     gap = height - c.reach;
@@ -299,8 +310,8 @@ void MovingContacts::Group::contact_gap(const Contact& c, const double* y, doubl
   const std::size_t b = std::size_t(d) * std::size_t(c.second);
   const double* origin_b = origin_[std::size_t(c.second)].data();
   double between[3], squared = 0.0, closing = 0.0;
-  for (int k = 0; k < d; ++k) {
-    between[k] = origin_b[k] + y[b + k] - (origin_a[k] + y[a + k]);
+  for (int k = 0; k < d; ++k) {  // as the right-hand side forms it
+    between[k] = (origin_b[k] - origin_a[k]) + (y[b + k] - y[a + k]);
     squared += between[k] * between[k];
     closing += between[k] * (y[velocities + b + k] - y[velocities + a + k]);
   }
@@ -326,10 +337,30 @@ void MovingContacts::Group::entry_gap(std::size_t entry, double t, const double*
   contact_gap(contacts_[std::size_t(scanned_[entry - watched_.size()])], y, gap, rate);
 }
 
+// The members entry reads (a watched body's member, a contact's one or two), written into
+// probe_ from the dense output at w's time: an event search reads those, not the whole state.
+void MovingContacts::Group::probe_entry(std::size_t entry,
+                                        const numerics::internal::DenseOutput::Weights& w) {
+  const std::size_t n = members_.size();
+  const auto d = std::size_t(dimension_);
+  auto probe_member = [&](std::int32_t slot) {
+    for (std::size_t i = d * std::size_t(slot), end = i + d; i < end; ++i) {
+      probe_[i] = dense_->component_at(w, i);
+      probe_[d * n + i] = dense_->component_at(w, d * n + i);
+    }
+  };
+  if (entry < watched_.size()) return probe_member(watched_[entry].member);
+  const Contact& c = contacts_[std::size_t(scanned_[entry - watched_.size()])];
+  probe_member(c.first);
+  if (c.second >= 0) probe_member(c.second);
+}
+
 void MovingContacts::Group::measure(double t, Samples& samples) {
-  dense_->state_at(t, probe_);
-  for (std::size_t entry = 0; entry < samples.gap.size(); ++entry)
+  const numerics::internal::DenseOutput::Weights w = dense_->weights_at(t);
+  for (std::size_t entry = 0; entry < samples.gap.size(); ++entry) {
+    probe_entry(entry, w);
     entry_gap(entry, t, probe_.data(), samples.gap[entry], samples.rate[entry]);
+  }
 }
 
 // The earliest event of the scanned entries in [a, b] of the current step: a watched body
@@ -365,7 +396,7 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
       };
       const numerics::Bracket bracket = numerics::narrow_crossing(
           [&](double t) {
-            dense_->state_at(t, probe_);
+            probe_entry(entry, dense_->weights_at(t));
             entry_gap(entry, t, probe_.data(), one_.gap[0], one_.rate[0]);
             return value(one_.gap[0], one_.rate[0]);
           },

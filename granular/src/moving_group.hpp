@@ -94,6 +94,9 @@ class MovingContacts::Group {
     double first_gain = 0.0, second_gain = 0.0;  // T / m of each body: force to the state's w'
     numerics::ContactLaw law;
     double max_compression = 0.0;  // m
+    // m: the second's origin less the first's; against a wall, its unit normal
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    double height = 0.0;  // m, against a wall: the first's origin above it
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
@@ -123,6 +126,8 @@ class MovingContacts::Group {
   void restart(double t);
   double first_step() const;  // s, of the integration restarted
   void rhs(const double* y, double* dydt);
+  template <int D>
+  void rhs_in(const double* y, double* dydt) const;
   // a member's position (m) and velocity (m/s) along the state y
   void member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
                     Eigen::Vector3d& v) const;
@@ -130,6 +135,7 @@ class MovingContacts::Group {
   void contact_gap(const Contact& c, const double* y, double& gap, double& rate) const;
   void watch_gap(const Watch& w, double t, const double* y, double& gap, double& rate) const;
   void entry_gap(std::size_t entry, double t, const double* y, double& gap, double& rate) const;
+  void probe_entry(std::size_t entry, const numerics::internal::DenseOutput::Weights& w);
   void measure(double t, Samples& samples);
   bool next_event(double a, double b, Event& event);
   void move_to(double t);
