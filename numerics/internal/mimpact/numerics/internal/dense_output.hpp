@@ -21,10 +21,9 @@ namespace mimpact::numerics::internal {
 //
 // The step, its error control and its interpolation are Boost.Odeint's runge_kutta_dopri5 in
 // its dense-output controller, operation for operation (a run gives the same numbers), with
-// what the moving geometry needs and Odeint cannot give: components outside the error control
-// (quadratures: q' = g(y), read by no derivative, such as a contact's impulse, the integral of
-// its force) that the stages do not form, and one component at a time out of the dense output
-// (a group's event search reads the few bodies it watches, not its whole state).
+// what the moving geometry needs and Odeint cannot give: one component at a time out of the
+// dense output (a group's event search reads the few bodies it watches, not its whole state),
+// and no reallocation at every step.
 class DenseOutput {
  public:
   using State = std::vector<double>;
@@ -37,16 +36,14 @@ class DenseOutput {
   DenseOutput(double absolute_tolerance, double relative_tolerance, double max_step = 0.0)
       : absolute_(absolute_tolerance), relative_(relative_tolerance), max_step_(max_step) {}
 
-  // Starts again from (t, y), with a first step of `first_step`. The components from
-  // `controlled` on are quadratures (above), integrated with the same weights.
-  void restart(const State& y, double t, double first_step, std::size_t controlled = kAll) {
+  // Starts again from (t, y), with a first step of `first_step`.
+  void restart(const State& y, double t, double first_step) {
     current_ = 0;
     y_[0] = y;
     y_[1].resize(y.size());
     for (State& k : dydt_) k.resize(y.size());
     for (State& k : stage_) k.resize(y.size());
     probe_.resize(y.size());
-    controlled_ = std::min(controlled, y.size());
     time_ = t;
     next_step_ = first_step;
     derivative_known_ = false;
@@ -81,7 +78,6 @@ class DenseOutput {
   std::int64_t steps() const { return steps_; }
 
  private:
-  static constexpr std::size_t kAll = std::size_t(-1);
   // failed attempts at one step before the step size is deemed unable to reach the tolerance
   static constexpr int kMostFailures = 500;
 
@@ -102,7 +98,6 @@ class DenseOutput {
   std::array<State, 5> stage_;     // k2..k6
   State probe_;                    // the state at a stage
   std::size_t current_ = 0;        // of y_ and dydt_: the end of the last step
-  std::size_t controlled_ = 0;
   double time_ = 0.0, previous_time_ = 0.0;
   double next_step_ = 0.0;
   bool derivative_known_ = false;
@@ -136,7 +131,7 @@ double DenseOutput::attempt(Rhs& rhs, double h) {
   State& out = y_[1 - current_];
   State& k7 = dydt_[1 - current_];
   auto& [k2, k3, k4, k5, k6] = stage_;
-  const std::size_t n = controlled_, all = y.size();
+  const std::size_t n = y.size();
   const double t = time_;
   // the products h a_ij first, then the sums in the tableau's order (Odeint's scale_sum)
   for (std::size_t i = 0; i < n; ++i) probe_[i] = 1.0 * y[i] + h * a21 * k1[i];
@@ -153,7 +148,7 @@ double DenseOutput::attempt(Rhs& rhs, double h) {
     probe_[i] = 1.0 * y[i] + h * a61 * k1[i] + h * a62 * k2[i] + h * a63 * k3[i] + h * a64 * k4[i] +
                 h * a65 * k5[i];
   rhs(probe_, k6, t + h);
-  for (std::size_t i = 0; i < all; ++i)
+  for (std::size_t i = 0; i < n; ++i)
     out[i] = 1.0 * y[i] + h * b1 * k1[i] + h * b3 * k3[i] + h * b4 * k4[i] + h * b5 * k5[i] +
              h * b6 * k6[i];
   rhs(out, k7, t + h);
