@@ -172,7 +172,8 @@ void MovingContacts::Group::restart(double t) {
                              ? 0.0
                              : time_scale * world_.bodies_[std::size_t(c.second_body)].inverse_mass,
           .law = c.law,
-          .max_compression = c.max_compression});
+          .max_compression = c.max_compression,
+          .hertz = c.elastic && c.law.exponent == 1.5});
       if (c.second >= 0) {
         s.offset = origin_[std::size_t(c.second)] - origin_[std::size_t(c.first)];
       } else {
@@ -253,14 +254,17 @@ void MovingContacts::Group::rhs_in(const double* y, double* dydt) const {
         squared += between[k] * between[k];
       }
       const double distance = std::sqrt(squared);
-      force = numerics::hysteresis_force(s.law, s.reach - distance, s.max_compression);
-      if (force != 0.0) {
-        double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
-        const double push = force / distance;
-        for (int k = 0; k < D; ++k) {
-          aa[k] -= s.first_gain * push * between[k];
-          ab[k] += s.second_gain * push * between[k];
-        }
+      if (s.hertz) {  // without a branch: a packing's contacts open and close at random
+        const double overlap = std::max(s.reach - distance, 0.0);
+        force = s.law.stiffness * (overlap * std::sqrt(overlap));  // as ContactLaw::force
+      } else {
+        force = numerics::hysteresis_force(s.law, s.reach - distance, s.max_compression);
+      }
+      double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
+      const double push = force / distance;
+      for (int k = 0; k < D; ++k) {
+        aa[k] -= s.first_gain * push * between[k];
+        ab[k] += s.second_gain * push * between[k];
       }
     } else {  // offset: the wall's normal; height: the origin's above the wall
       double height = s.height;

@@ -97,6 +97,7 @@ class MovingContacts::Group {
     // m: the second's origin less the first's; against a wall, its unit normal
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
     double height = 0.0;  // m, against a wall: the first's origin above it
+    bool hertz = false;   // elastic, eta = 3/2: K max(delta, 0)^(3/2)
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
