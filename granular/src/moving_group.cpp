@@ -198,7 +198,7 @@ void MovingContacts::Group::restart(double t) {
     contact_gap(c, y_.data(), c.gap, c.rate);
   }
   if (!dense_) dense_ = std::make_unique<numerics::internal::DenseOutput>(world_.options_.ode);
-  dense_->restart(y_, t, first_step());
+  dense_->restart(y_, t, first_step(), 2 * std::size_t(d) * n);  // not the impulses
   fresh_ = true;
 }
 

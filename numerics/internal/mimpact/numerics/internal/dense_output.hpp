@@ -23,7 +23,8 @@ namespace mimpact::numerics::internal {
 // its dense-output controller, operation for operation (a run gives the same numbers), with
 // what the moving geometry needs and Odeint cannot give: one component at a time out of the
 // dense output (a group's event search reads the few bodies it watches, not its whole state),
-// and no reallocation at every step.
+// stages formed only where the right-hand side reads them (a contact's impulse, the integral
+// of its force, is read by no derivative), and no reallocation at every step.
 class DenseOutput {
  public:
   using State = std::vector<double>;
@@ -36,14 +37,17 @@ class DenseOutput {
   DenseOutput(double absolute_tolerance, double relative_tolerance, double max_step = 0.0)
       : absolute_(absolute_tolerance), relative_(relative_tolerance), max_step_(max_step) {}
 
-  // Starts again from (t, y), with a first step of `first_step`.
-  void restart(const State& y, double t, double first_step) {
+  // Starts again from (t, y), with a first step of `first_step`. The right-hand side reads the
+  // first `read` components only (the others' derivatives depend on those alone): the stages
+  // form those, and every component is stepped, interpolated and held to the tolerance alike.
+  void restart(const State& y, double t, double first_step, std::size_t read = kAll) {
     current_ = 0;
     y_[0] = y;
     y_[1].resize(y.size());
     for (State& k : dydt_) k.resize(y.size());
     for (State& k : stage_) k.resize(y.size());
     probe_.resize(y.size());
+    read_ = std::min(read, y.size());
     time_ = t;
     next_step_ = first_step;
     derivative_known_ = false;
@@ -78,6 +82,7 @@ class DenseOutput {
   std::int64_t steps() const { return steps_; }
 
  private:
+  static constexpr std::size_t kAll = std::size_t(-1);
   // failed attempts at one step before the step size is deemed unable to reach the tolerance
   static constexpr int kMostFailures = 500;
 
@@ -98,6 +103,7 @@ class DenseOutput {
   std::array<State, 5> stage_;     // k2..k6
   State probe_;                    // the state at a stage
   std::size_t current_ = 0;        // of y_ and dydt_: the end of the last step
+  std::size_t read_ = 0;           // components the right-hand side reads
   double time_ = 0.0, previous_time_ = 0.0;
   double next_step_ = 0.0;
   bool derivative_known_ = false;
@@ -131,20 +137,20 @@ double DenseOutput::attempt(Rhs& rhs, double h) {
   State& out = y_[1 - current_];
   State& k7 = dydt_[1 - current_];
   auto& [k2, k3, k4, k5, k6] = stage_;
-  const std::size_t n = y.size();
+  const std::size_t n = y.size(), read = read_;
   const double t = time_;
   // the products h a_ij first, then the sums in the tableau's order (Odeint's scale_sum)
-  for (std::size_t i = 0; i < n; ++i) probe_[i] = 1.0 * y[i] + h * a21 * k1[i];
+  for (std::size_t i = 0; i < read; ++i) probe_[i] = 1.0 * y[i] + h * a21 * k1[i];
   rhs(probe_, k2, t + h * c2);
-  for (std::size_t i = 0; i < n; ++i) probe_[i] = 1.0 * y[i] + h * a31 * k1[i] + h * a32 * k2[i];
+  for (std::size_t i = 0; i < read; ++i) probe_[i] = 1.0 * y[i] + h * a31 * k1[i] + h * a32 * k2[i];
   rhs(probe_, k3, t + h * c3);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < read; ++i)
     probe_[i] = 1.0 * y[i] + h * a41 * k1[i] + h * a42 * k2[i] + h * a43 * k3[i];
   rhs(probe_, k4, t + h * c4);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < read; ++i)
     probe_[i] = 1.0 * y[i] + h * a51 * k1[i] + h * a52 * k2[i] + h * a53 * k3[i] + h * a54 * k4[i];
   rhs(probe_, k5, t + h * c5);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < read; ++i)
     probe_[i] = 1.0 * y[i] + h * a61 * k1[i] + h * a62 * k2[i] + h * a63 * k3[i] + h * a64 * k4[i] +
                 h * a65 * k5[i];
   rhs(probe_, k6, t + h);
