@@ -358,8 +358,10 @@ void MovingContacts::form_groups(double end) {
   }
 }
 
-// Bodies flying freely that meet within the window start a group where they meet, the earliest
-// first; a body takes part in one such meeting (the group watches it for the others).
+// Bodies flying freely that meet within the window start a group at the earliest of their
+// meetings, and bodies linked by meetings start one group together: a body that meets two at
+// once was the first's alone, and taken by the other at a located event, which parted mirror
+// beads.
 void MovingContacts::form_collision_groups(double end) {
   struct Meeting {
     double time;
@@ -391,12 +393,36 @@ void MovingContacts::form_collision_groups(double end) {
   }
   std::sort(meetings.begin(), meetings.end(),
             [](const Meeting& p, const Meeting& q) { return p.time < q.time; });
+  // the bodies that meet, numbered by slot (-1 between windows for a body flying freely)
+  std::vector<std::int32_t> meeting;
+  auto number = [&](std::int32_t body) {
+    Body& b = bodies_[std::size_t(body)];
+    if (b.slot >= 0) return b.slot;
+    b.slot = std::int32_t(meeting.size());
+    meeting.push_back(body);
+    return b.slot;
+  };
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   for (const Meeting& m : meetings) {
-    if (bodies_[std::size_t(m.first)].owner >= 0) continue;
-    if (m.second >= 0 && bodies_[std::size_t(m.second)].owner >= 0) continue;
-    new_group().begin_collision(m.time, m.first, m.second);
-    note_moving(m.first);
-    if (m.second >= 0) note_moving(m.second);
+    const std::int32_t p = number(m.first);
+    pairs.emplace_back(p, m.second >= 0 ? number(m.second) : p);
+  }
+  Components linked(meeting.size());
+  for (const auto& [p, q] : pairs) linked.join(p, q);
+  std::vector<const Meeting*> earliest(meeting.size(), nullptr);
+  std::vector<std::vector<std::int32_t>> members(meeting.size());
+  for (const Meeting& m : meetings) {
+    const std::int32_t root = linked.find(bodies_[std::size_t(m.first)].slot);
+    if (!earliest[std::size_t(root)]) earliest[std::size_t(root)] = &m;
+  }
+  for (std::int32_t body : meeting)
+    members[std::size_t(linked.find(bodies_[std::size_t(body)].slot))].push_back(body);
+  for (std::int32_t body : meeting) bodies_[std::size_t(body)].slot = -1;
+  for (std::size_t root = 0; root < meeting.size(); ++root) {
+    if (members[root].empty()) continue;
+    const Meeting& first = *earliest[root];
+    new_group().begin_collision(first.time, members[root], first.first, first.second);
+    for (std::int32_t body : members[root]) note_moving(body);
   }
 }
 

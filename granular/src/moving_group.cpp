@@ -120,11 +120,11 @@ void MovingContacts::Group::carry_on(std::int32_t id, double start,
   last_step_ = 0.0;  // from its members' steps, as a group formed anew
 }
 
-void MovingContacts::Group::begin_collision(double start, std::int32_t first, std::int32_t second) {
+void MovingContacts::Group::begin_collision(double start, const std::vector<std::int32_t>& members,
+                                            std::int32_t first, std::int32_t second) {
   start_ = time_ = start;
   dimension_ = world_.geometry_.dimension;
-  add_member(first);
-  if (second >= 0) add_member(second);
+  for (std::int32_t body : members) add_member(body);
   pair_new_members();
   if (second >= 0 && second < first) std::swap(first, second);
   for (Contact& c : contacts_)

@@ -46,8 +46,10 @@ class MovingContacts::Group {
   // as the world last committed them, and pairs only the bodies new to it (pairing every
   // member anew at every window was a fifth of a 100 x 100 run).
   void carry_on(std::int32_t id, double start, const std::vector<std::int32_t>& members);
-  // Takes two bodies flying freely that meet at `start` (second < 0: a wall).
-  void begin_collision(double start, std::int32_t first, std::int32_t second);
+  // Takes bodies flying freely that meet within the window, `first` and `second` (< 0: a wall)
+  // the earliest, at `start`; the others' contacts join as they close.
+  void begin_collision(double start, const std::vector<std::int32_t>& members, std::int32_t first,
+                       std::int32_t second);
   // Integrates from its start to `end`, restarting at its own events.
   void integrate(double end);
   // Writes its members' states at the end and its contacts into the world.
