@@ -151,9 +151,14 @@ void MovingContacts::Group::restart(double t) {
         watched_.push_back({std::int32_t(m), other});
   active_.clear();
   springs_.clear();
+  springs_aside_.clear();
+  forces_.reach.clear();
+  forces_.stiffness.clear();
+  gain_.resize(n);
+  for (std::size_t m = 0; m < n; ++m)
+    gain_[m] = world_.time_scale_ * world_.bodies_[std::size_t(members_[m])].inverse_mass;
   scanned_.clear();
   elastic_.clear();
-  const double time_scale = world_.time_scale_;
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
     c.first = world_.bodies_[std::size_t(c.first_body)].slot;
@@ -162,28 +167,26 @@ void MovingContacts::Group::restart(double t) {
     if (c.elastic || c.loaded) {
       c.slot = std::int32_t(active_.size());
       active_.push_back(std::int32_t(i));
-      Spring& s = springs_.emplace_back(Spring{
-          .first = c.first,
-          .second = c.second,
-          .slot = c.slot,
-          .reach = c.reach,
-          .first_gain = time_scale * world_.bodies_[std::size_t(c.first_body)].inverse_mass,
-          .second_gain = c.second_body < 0
-                             ? 0.0
-                             : time_scale * world_.bodies_[std::size_t(c.second_body)].inverse_mass,
-          .law = c.law,
-          .max_compression = c.max_compression,
-          .hertz = c.elastic && c.law.exponent == 1.5});
+      Spring& s = springs_.emplace_back(Spring{.first = c.first, .second = c.second});
+      forces_.reach.push_back(c.reach);
+      forces_.stiffness.push_back(c.law.stiffness);
+      const bool hertz = c.elastic && c.law.exponent == 1.5;
+      if (!hertz || c.second < 0) {
+        s.aside = std::int32_t(springs_aside_.size());
+        springs_aside_.push_back({.law = c.law, .max_compression = c.max_compression});
+      }
       if (c.second >= 0) {
         s.offset = origin_[std::size_t(c.second)] - origin_[std::size_t(c.first)];
       } else {
         const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
         s.offset = wall.normal;
-        s.height = wall.normal.dot(origin_[std::size_t(c.first)] - wall.point);
+        springs_aside_.back().height = wall.normal.dot(origin_[std::size_t(c.first)] - wall.point);
       }
     }
     (c.elastic ? elastic_ : scanned_).push_back(std::int32_t(i));
   }
+  forces_.separation.resize(std::size_t(d) * springs_.size());
+  for (auto* v : {&forces_.squared, &forces_.force, &forces_.push}) v->resize(springs_.size());
   y_.assign(2 * std::size_t(d) * n + active_.size(), 0.0);
   for (std::size_t m = 0; m < n; ++m)
     for (int k = 0; k < d; ++k)
@@ -233,7 +236,7 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
 
 // The right-hand side with the dimension known to the compiler: it is most of a run's time.
 template <int D>
-void MovingContacts::Group::rhs_in(const double* y, double* dydt) const {
+void MovingContacts::Group::rhs_in(const double* y, double* dydt) {
   const std::size_t velocities = std::size_t(D) * members_.size();
   // in the state's units: x' = w / T, w' = T a, q' = T F / m (moving_contacts.hpp)
   const double inverse_time_scale = 1.0 / world_.time_scale_;
@@ -242,38 +245,65 @@ void MovingContacts::Group::rhs_in(const double* y, double* dydt) const {
   double* acceleration = dydt + velocities;
   double* impulse = dydt + 2 * velocities;
   std::fill(acceleration, acceleration + velocities, 0.0);
-  for (const Spring& s : springs_) {
+  const std::size_t count = springs_.size();
+  double* separation = forces_.separation.data();
+  double* squared = forces_.squared.data();
+  for (std::size_t slot = 0; slot < count; ++slot) {
+    const Spring& s = springs_[slot];
+    if (s.second < 0) {
+      squared[slot] = 1.0;  // a wall's: formed below
+      continue;
+    }
     const double* ya = y + std::size_t(D) * std::size_t(s.first);
+    const double* yb = y + std::size_t(D) * std::size_t(s.second);
+    double sum = 0.0;
+    for (int k = 0; k < D; ++k) {
+      const double between = s.offset[k] + (yb[k] - ya[k]);
+      separation[D * slot + k] = between;
+      sum += between * between;
+    }
+    squared[slot] = sum;
+  }
+  const double* reach = forces_.reach.data();
+  const double* stiffness = forces_.stiffness.data();
+  double* force = forces_.force.data();
+  double* push = forces_.push.data();
+  for (std::size_t slot = 0; slot < count; ++slot) {  // as ContactLaw::force, without a branch
+    const double distance = std::sqrt(squared[slot]);
+    const double gap = reach[slot] - distance;
+    const double overlap = gap > 0.0 ? gap : 0.0;  // std::max's reference is a branch to gcc
+    force[slot] = stiffness[slot] * (overlap * std::sqrt(overlap));
+    push[slot] = force[slot] / distance;
+  }
+  for (std::size_t slot = 0; slot < count; ++slot) {
+    const Spring& s = springs_[slot];
     double* aa = acceleration + std::size_t(D) * std::size_t(s.first);
-    double force;
+    const double first_gain = gain_[std::size_t(s.first)];
     if (s.second >= 0) {
-      const double* yb = y + std::size_t(D) * std::size_t(s.second);
-      double between[D], squared = 0.0;
-      for (int k = 0; k < D; ++k) {
-        between[k] = s.offset[k] + (yb[k] - ya[k]);
-        squared += between[k] * between[k];
-      }
-      const double distance = std::sqrt(squared);
-      if (s.hertz) {  // without a branch: a packing's contacts open and close at random
-        const double overlap = std::max(s.reach - distance, 0.0);
-        force = s.law.stiffness * (overlap * std::sqrt(overlap));  // as ContactLaw::force
-      } else {
-        force = numerics::hysteresis_force(s.law, s.reach - distance, s.max_compression);
+      if (s.aside >= 0) {  // the bi-stiffness curves
+        const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
+        const double distance = std::sqrt(squared[slot]);
+        force[slot] =
+            numerics::hysteresis_force(aside.law, reach[slot] - distance, aside.max_compression);
+        push[slot] = force[slot] / distance;
       }
       double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
-      const double push = force / distance;
+      const double second_gain = gain_[std::size_t(s.second)];
       for (int k = 0; k < D; ++k) {
-        aa[k] -= s.first_gain * push * between[k];
-        ab[k] += s.second_gain * push * between[k];
+        aa[k] -= first_gain * push[slot] * separation[D * slot + k];
+        ab[k] += second_gain * push[slot] * separation[D * slot + k];
       }
     } else {  // offset: the wall's normal; height: the origin's above the wall
-      double height = s.height;
+      const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
+      const double* ya = y + std::size_t(D) * std::size_t(s.first);
+      double height = aside.height;
       for (int k = 0; k < D; ++k) height += s.offset[k] * ya[k];
-      force = numerics::hysteresis_force(s.law, s.reach - height, s.max_compression);
-      if (force != 0.0)
-        for (int k = 0; k < D; ++k) aa[k] += s.first_gain * force * s.offset[k];
+      force[slot] =
+          numerics::hysteresis_force(aside.law, reach[slot] - height, aside.max_compression);
+      if (force[slot] != 0.0)
+        for (int k = 0; k < D; ++k) aa[k] += first_gain * force[slot] * s.offset[k];
     }
-    impulse[s.slot] = impulse_rate * force;
+    impulse[slot] = impulse_rate * force[slot];
   }
 }
 

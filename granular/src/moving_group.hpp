@@ -87,19 +87,29 @@ class MovingContacts::Group {
     std::int32_t slot = -1;        // of its impulse in the state, while in the right-hand side
     double gap = 0.0, rate = 0.0;  // elastic: m, m/s, at the end of the last segment tracked
   };
-  // A contact in the right-hand side as the right-hand side reads it, contiguous and with all
-  // its force needs: its law and largest overlap do not change between restarts.
+  // A contact in the right-hand side as the right-hand side reads it, contiguous, in the order
+  // of active_ (its impulse's slot is its index), with its reach and stiffness in
+  // SpringForces; a law aside for the few that follow the bi-stiffness curves or touch a wall.
   struct Spring {
-    std::int32_t first = 0, second = 0;          // member slots (second < 0: -1 - wall)
-    std::int32_t slot = 0;                       // of its impulse in the state
-    double reach = 0.0;                          // m
-    double first_gain = 0.0, second_gain = 0.0;  // T / m of each body: force to the state's w'
-    numerics::ContactLaw law;
-    double max_compression = 0.0;  // m
+    std::int32_t first = 0, second = 0;  // member slots (second < 0: -1 - wall)
+    std::int32_t aside = -1;  // of springs_aside_, or -1: elastic Hertz between two members
     // m: the second's origin less the first's; against a wall, its unit normal
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-    double height = 0.0;  // m, against a wall: the first's origin above it
-    bool hertz = false;   // elastic, eta = 3/2: K max(delta, 0)^(3/2)
+  };
+  // Their law does not change between restarts.
+  struct SpringAside {
+    numerics::ContactLaw law;
+    double max_compression = 0.0;  // m
+    double height = 0.0;           // m, against a wall: the first's origin above it
+  };
+  // The springs' forces in three passes, by arrays over the springs: the separations gathered
+  // from the state, the elastic Hertz forces formed together (their square roots and divisions
+  // are most of a packing's right-hand side, and the compiler vectorises them there), the
+  // accelerations scattered in the springs' order (the same sums as one pass, to the bit).
+  struct SpringForces {
+    std::vector<double> reach, stiffness;  // m, N / m^(3/2) (elastic Hertz); set at a restart
+    std::vector<double> separation;        // m, D per spring: the second's centre less the first's
+    std::vector<double> squared, force, push;  // m^2, N, N / m
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
@@ -130,7 +140,7 @@ class MovingContacts::Group {
   double first_step() const;  // s, of the integration restarted
   void rhs(const double* y, double* dydt);
   template <int D>
-  void rhs_in(const double* y, double* dydt) const;
+  void rhs_in(const double* y, double* dydt);
   // a member's position (m) and velocity (m/s) along the state y
   void member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
                     Eigen::Vector3d& v) const;
@@ -160,9 +170,12 @@ class MovingContacts::Group {
   std::size_t paired_members_ = 0;  // members whose pairs with the others are in contacts_
   std::vector<Eigen::Vector3d> position_, velocity_;  // members', at time_ (after move_to)
   std::vector<Eigen::Vector3d> origin_;               // members' positions at the last restart
-  std::vector<Contact> contacts_;      // its members' contacts: every pair within reach
-  std::vector<std::int32_t> active_;   // of contacts_: those in the right-hand side
-  std::vector<Spring> springs_;        // the same, as the right-hand side reads them
+  std::vector<Contact> contacts_;     // its members' contacts: every pair within reach
+  std::vector<std::int32_t> active_;  // of contacts_: those in the right-hand side
+  std::vector<Spring> springs_;       // the same, as the right-hand side reads them
+  std::vector<SpringAside> springs_aside_;
+  SpringForces forces_;
+  std::vector<double> gain_;  // members': T / m, a force to the state's w' (moving_contacts.hpp)
   std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
   std::vector<std::int32_t> elastic_;  // of contacts_: the elastic, whose peaks are tracked
   std::vector<Watch> watched_;
