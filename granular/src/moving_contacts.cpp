@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include "mimpact/common/error.hpp"
 #include "moving_group.hpp"
@@ -87,12 +88,12 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
   // lasts 2.94 largest overlaps / closing speed: 3.9 overlap / closing. A window of at most 1.2
   // of these is under a third of the quickest contact, so that one begun between two groups
   // within a window is still closed at its end; and no body leaves its list's ball within it.
-  // A window lasts about four steps of its largest group, within [0.5, 1.2] overlap / closing
-  // (next_window)
-  const double list_bound = 0.25 * lists_.skin() / speed_bound_;
-  longest_window_ = std::min(1.2 * overlap / closing, list_bound);
-  shortest_window_ = std::min(0.5 * overlap / closing, list_bound);
-  window_ = shortest_window_;
+  // A window lasts about four steps of its largest group, within [0.5, 1.2] overlap / closing,
+  // or up to the lists' bound where one group integrates it (next_windows)
+  list_bound_ = 0.25 * lists_.skin() / speed_bound_;
+  longest_window_ = std::min(1.2 * overlap / closing, list_bound_);
+  shortest_window_ = std::min(0.5 * overlap / closing, list_bound_);
+  window_ = extended_window_ = shortest_window_;
   // the gaps are differences of coordinates: their rounding must leave the overlaps digits
   double largest_coordinate = 0.0;
   for (const Eigen::Vector3d& x : geometry.position)
@@ -173,14 +174,15 @@ bool MovingContacts::ended() const {
 double MovingContacts::advance(double target) {
   while (time_ < target && !ended()) {
     double end = std::min(target, time_ + window_);
-    if (loaded_ids_.empty()) end = std::min(target, std::max(end, next_meeting(target)));
+    double extended = std::min(target, time_ + extended_window_);
+    if (loaded_ids_.empty()) end = extended = std::min(target, std::max(end, next_meeting(target)));
     if (!(end > time_))
       throw Error("moving contacts: a window of " + to_text(window_) +
                   " s no longer moves t = " + to_text(time_) +
                   " s in double precision; the contacts' time scale is below what the run's "
                   "length resolves (check the speeds and stiffnesses, or end_time)");
-    run_window(end);
-    window_ = next_window();
+    run_window(end, extended);
+    std::tie(window_, extended_window_) = next_windows();
   }
   return time_;
 }
@@ -207,13 +209,25 @@ double MovingContacts::next_meeting(double target) const {
 // long windows restart less, short ones keep the groups small. A window of four steps of the
 // largest group, within [0.5, 1.2] overlap / closing, does both: 0.5 restarted the FCC front's
 // group at every step at tolerance 1e-4, and 1.2 cost 56 x 56 a third more body steps at 1e-8.
-double MovingContacts::next_window() const {
+// Where one group integrated the last window, the next may take its four steps up to 2.5 times
+// longer: no two groups can meet within it if it keeps one (run_window). An FCC 20^3 packing's
+// front group, stepping 6 us at tolerance 1e-4, took two steps a window of 8 us (0.84 s; 0.52 s
+// with these). Longer still, the front outran the halo formed at the window's start, and each
+// body it touched restarted the whole group (36 in one window of 24 us).
+std::pair<double, double> MovingContacts::next_windows() const {
   const Group* largest = nullptr;
+  int count = 0;
   for (const auto& group : groups_)
-    if (group && (!largest || group->members().size() > largest->members().size()))
-      largest = group.get();
-  if (!largest) return shortest_window_;  // a group that starts takes short steps
-  return std::clamp(4.0 * largest->last_step(), shortest_window_, longest_window_);
+    if (group) {
+      ++count;
+      if (!largest || group->members().size() > largest->members().size()) largest = group.get();
+    }
+  if (!largest) return {shortest_window_, shortest_window_};  // a group that starts steps short
+  const double steps = 4.0 * largest->last_step();
+  const double window = std::clamp(steps, shortest_window_, longest_window_);
+  return {window, count == 1 ? std::clamp(steps, shortest_window_,
+                                          std::min(2.5 * longest_window_, list_bound_))
+                             : window};
 }
 
 MovingContacts::Group& MovingContacts::new_group() {
@@ -240,13 +254,22 @@ std::unique_ptr<MovingContacts::Group> MovingContacts::take_previous_group(
   return std::move(previous_groups_[std::size_t(best)]);
 }
 
-void MovingContacts::run_window(double end) {
-  refresh_lists(end);
+void MovingContacts::run_window(double end, double extended) {
+  refresh_lists(extended);
   previous_groups_ = std::move(groups_);
   groups_.clear();
-  form_groups(end);
+  form_groups(extended);  // groups formed for a longer window only take more bodies
   previous_groups_.clear();
-  form_collision_groups(end);
+  std::vector<Meeting> meetings = free_meetings(extended);
+  const auto count =
+      std::count_if(groups_.begin(), groups_.end(), [](const auto& g) { return bool(g); });
+  if (count == 1 && meetings.empty()) {
+    if (extended > end) ++stats_.extended_windows;
+    end = extended;
+  } else {
+    std::erase_if(meetings, [&](const Meeting& m) { return m.time > end; });
+  }
+  form_collision_groups(meetings);
   std::vector<bool> integrated;
   while (true) {
     integrated.resize(groups_.size(), false);
@@ -358,15 +381,7 @@ void MovingContacts::form_groups(double end) {
   }
 }
 
-// Bodies flying freely that meet within the window start a group at the earliest of their
-// meetings, and bodies linked by meetings start one group together: a body that meets two at
-// once was the first's alone, and taken by the other at a located event, which parted mirror
-// beads.
-void MovingContacts::form_collision_groups(double end) {
-  struct Meeting {
-    double time;
-    std::int32_t first, second;  // second < 0: -1 - wall
-  };
+std::vector<MovingContacts::Meeting> MovingContacts::free_meetings(double end) const {
   std::vector<Meeting> meetings;
   const double horizon = end - time_;
   const double resolution = options_.overlap_resolution;
@@ -393,6 +408,14 @@ void MovingContacts::form_collision_groups(double end) {
   }
   std::sort(meetings.begin(), meetings.end(),
             [](const Meeting& p, const Meeting& q) { return p.time < q.time; });
+  return meetings;
+}
+
+// Bodies flying freely that meet within the window start a group at the earliest of their
+// meetings, and bodies linked by meetings start one group together: a body that meets two at
+// once was the first's alone, and taken by the other at a located event, which parted mirror
+// beads.
+void MovingContacts::form_collision_groups(const std::vector<Meeting>& meetings) {
   // the bodies that meet, numbered by slot (-1 between windows for a body flying freely)
   std::vector<std::int32_t> meeting;
   auto number = [&](std::int32_t body) {

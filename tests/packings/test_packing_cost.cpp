@@ -4,6 +4,8 @@
 // (docs/performance_packings.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "packing_runs.hpp"
@@ -33,6 +35,47 @@ TEST(PackingCost, BodyStepsPerLoadedContactAndSecondDoNotGrowWithThePacking) {
   const double small = steps_per_contact_second(16), large = steps_per_contact_second(32);
   std::printf("body steps per contact and second: 16 x 16 %.3g, 32 x 32 %.3g\n", small, large);
   EXPECT_LT(large, 1.25 * small);
+}
+
+// A window that one group integrates may outlast the bound that keeps two groups from meeting
+// unseen within one (docs/model.md, section 17): an FCC 6^3 packing struck at 1 m/s takes such
+// windows at tolerance 1e-4, and its velocities stay within the tolerance of the run at 1e-10,
+// whose short steps keep every window short, with its momentum kept to round-off.
+TEST(PackingCost, AWindowOfOneGroupOutlastsTwoGroupsBoundAndKeepsTheAnswer) {
+  auto run = [](double tolerance) {
+    char compliant[120];
+    std::snprintf(compliant, sizeof compliant,
+                  R"("method": "compliant", "compliant": {"tolerance": %g, "end_time": 1.5e-4})",
+                  tolerance);
+    return run_packing("{" + kSteel +
+                       R"(, "lattice": {"type": "fcc", "layers": 6, "rows": 6, "columns": 6,
+                          "radius": 0.005}, "strikers": [{"target": [0, 3, 3], "radius": 0.005,
+                          "velocity": [0, 0, 1]}], )" +
+                       compliant + "}");
+  };
+  const PackingCase loose = run(1e-4), fine = run(1e-10);
+  const Eigen::VectorXd& v = loose.run.impact.velocity_after;
+  const Eigen::VectorXd& reference = fine.run.impact.velocity_after;
+  const Eigen::Index bodies = loose.model.body_count();
+  double sum = 0.0, worst = 0.0;
+  Eigen::Vector3d before = Eigen::Vector3d::Zero(), after = Eigen::Vector3d::Zero();
+  for (Eigen::Index b = 0; b < bodies; ++b) {
+    const double error = (v.segment<3>(3 * b) - reference.segment<3>(3 * b)).norm();
+    sum += error * error;
+    worst = std::max(worst, error);
+    before += loose.model.mass(3 * b) * loose.model.velocity.segment<3>(3 * b);
+    after += loose.model.mass(3 * b) * v.segment<3>(3 * b);
+  }
+  const double rms = std::sqrt(sum / double(bodies));  // relative to the striker's 1 m/s
+  std::printf(
+      "windows beyond two groups' bound: %lld of %lld (%lld at 1e-10); RMS %.3g, worst "
+      "%.3g m/s\n",
+      (long long)loose.run.moving.extended_windows, (long long)loose.run.moving.windows,
+      (long long)fine.run.moving.extended_windows, rms, worst);
+  EXPECT_GT(loose.run.moving.extended_windows, 0);
+  EXPECT_EQ(fine.run.moving.extended_windows, 0);
+  EXPECT_LT(rms, 1e-4);
+  EXPECT_LT((after - before).norm(), 1e-12 * before.norm());
 }
 
 }  // namespace

@@ -60,11 +60,12 @@ struct MovingContact {
 };
 
 struct MovingContactsStats {
-  std::int64_t steps = 0;           // time steps of all groups
-  std::int64_t member_steps = 0;    // the bodies those steps carried
-  std::int64_t windows = 0;         // synchronisation windows
-  std::int64_t redone_groups = 0;   // groups integrated again over a window (they met another)
-  std::int64_t group_restarts = 0;  // restarts of a group's integration at its own events
+  std::int64_t steps = 0;             // time steps of all groups
+  std::int64_t member_steps = 0;      // the bodies those steps carried
+  std::int64_t windows = 0;           // synchronisation windows
+  std::int64_t extended_windows = 0;  // those one group integrated beyond a window of two groups
+  std::int64_t redone_groups = 0;     // groups integrated again over a window (they met another)
+  std::int64_t group_restarts = 0;    // restarts of a group's integration at its own events
   std::int64_t most_bodies_in_motion = 0;
   std::int64_t largest_group = 0;
   std::int64_t list_refreshes = 0;
@@ -115,10 +116,19 @@ class MovingContacts {
   class Group;
   friend class Group;
 
-  void run_window(double end);
+  // Bodies flying freely that meet within a window: when, and which (second < 0: -1 - wall).
+  struct Meeting {
+    double time;
+    std::int32_t first, second;
+  };
+  // A window to `end`, or to `extended` (>= end) if one group integrates it: then no contact
+  // can begin and end between two groups within it (next_windows).
+  void run_window(double end, double extended);
   void refresh_lists(double end);
   void form_groups(double end);
-  void form_collision_groups(double end);
+  // the meetings of bodies flying freely before `end`, by time
+  std::vector<Meeting> free_meetings(double end) const;
+  void form_collision_groups(const std::vector<Meeting>& meetings);
   bool merge_groups_that_met();
   // a group for this window, numbered in groups_
   Group& new_group();
@@ -126,7 +136,8 @@ class MovingContacts {
   // previous_groups_ (null if none is left).
   std::unique_ptr<Group> take_previous_group(const std::vector<std::int32_t>& members);
   double next_meeting(double target) const;
-  double next_window() const;  // s: the length of the next window
+  // s: the lengths of the next window, and of the same window if one group integrates it
+  std::pair<double, double> next_windows() const;
   void note_moving(std::int32_t body);
   // the record of the contact of the two (a body and -1 - wall), made if there is none
   std::int32_t contact_id(std::int32_t first, std::int32_t second);
@@ -147,10 +158,12 @@ class MovingContacts {
   std::vector<std::unique_ptr<Group>> previous_groups_;  // the window before's, while forming
   std::vector<std::int32_t> votes_;  // per previous group: members of a component it committed
   double time_ = 0.0;
-  double speed_bound_ = 0.0;  // m/s: no body moves faster (the energy is all it can have)
-  double window_ = 0.0;       // s, of the next window
+  double speed_bound_ = 0.0;      // m/s: no body moves faster (the energy is all it can have)
+  double window_ = 0.0;           // s, of the next window
+  double extended_window_ = 0.0;  // s, of the next window if one group integrates it
   double longest_window_ = 0.0, shortest_window_ = 0.0;  // s
-  double first_step_ = 0.0;                              // s, of a group that starts from nothing
+  double list_bound_ = 0.0;  // s: no body leaves its list's ball within a window this long
+  double first_step_ = 0.0;  // s, of a group that starts from nothing
   // The units of a group's state (docs/model.md, section 17): velocities are integrated as
   // time_scale_ v (m) and impulses as time_scale_ p / mass_scale_ (m), so that one absolute
   // tolerance weighs a position, a velocity and an impulse alike at the quickest contact's
