@@ -152,8 +152,8 @@ void MovingContacts::Group::restart(double t) {
   active_.clear();
   springs_.clear();
   springs_aside_.clear();
-  forces_.reach.clear();
-  forces_.stiffness.clear();
+  spring_reach_.clear();
+  spring_stiffness_.clear();
   gain_.resize(n);
   for (std::size_t m = 0; m < n; ++m)
     gain_[m] = world_.time_scale_ * world_.bodies_[std::size_t(members_[m])].inverse_mass;
@@ -168,8 +168,8 @@ void MovingContacts::Group::restart(double t) {
       c.slot = std::int32_t(active_.size());
       active_.push_back(std::int32_t(i));
       Spring& s = springs_.emplace_back(Spring{.first = c.first, .second = c.second});
-      forces_.reach.push_back(c.reach);
-      forces_.stiffness.push_back(c.law.stiffness);
+      spring_reach_.push_back(c.reach);
+      spring_stiffness_.push_back(c.law.stiffness);
       const bool hertz = c.elastic && c.law.exponent == 1.5;
       if (!hertz || c.second < 0) {
         s.aside = std::int32_t(springs_aside_.size());
@@ -185,8 +185,6 @@ void MovingContacts::Group::restart(double t) {
     }
     (c.elastic ? elastic_ : scanned_).push_back(std::int32_t(i));
   }
-  forces_.separation.resize(std::size_t(d) * springs_.size());
-  for (auto* v : {&forces_.squared, &forces_.force, &forces_.push}) v->resize(springs_.size());
   y_.assign(2 * std::size_t(d) * n + active_.size(), 0.0);
   for (std::size_t m = 0; m < n; ++m)
     for (int k = 0; k < d; ++k)
@@ -245,65 +243,67 @@ void MovingContacts::Group::rhs_in(const double* y, double* dydt) {
   double* acceleration = dydt + velocities;
   double* impulse = dydt + 2 * velocities;
   std::fill(acceleration, acceleration + velocities, 0.0);
-  const std::size_t count = springs_.size();
-  double* separation = forces_.separation.data();
-  double* squared = forces_.squared.data();
-  for (std::size_t slot = 0; slot < count; ++slot) {
-    const Spring& s = springs_[slot];
-    if (s.second < 0) {
-      squared[slot] = 1.0;  // a wall's: formed below
-      continue;
-    }
-    const double* ya = y + std::size_t(D) * std::size_t(s.first);
-    const double* yb = y + std::size_t(D) * std::size_t(s.second);
-    double sum = 0.0;
-    for (int k = 0; k < D; ++k) {
-      const double between = s.offset[k] + (yb[k] - ya[k]);
-      separation[D * slot + k] = between;
-      sum += between * between;
-    }
-    squared[slot] = sum;
-  }
-  const double* reach = forces_.reach.data();
-  const double* stiffness = forces_.stiffness.data();
-  double* force = forces_.force.data();
-  double* push = forces_.push.data();
-  for (std::size_t slot = 0; slot < count; ++slot) {  // as ContactLaw::force, without a branch
-    const double distance = std::sqrt(squared[slot]);
-    const double gap = reach[slot] - distance;
-    const double overlap = gap > 0.0 ? gap : 0.0;  // std::max's reference is a branch to gcc
-    force[slot] = stiffness[slot] * (overlap * std::sqrt(overlap));
-    push[slot] = force[slot] / distance;
-  }
-  for (std::size_t slot = 0; slot < count; ++slot) {
-    const Spring& s = springs_[slot];
-    double* aa = acceleration + std::size_t(D) * std::size_t(s.first);
-    const double first_gain = gain_[std::size_t(s.first)];
-    if (s.second >= 0) {
-      if (s.aside >= 0) {  // the bi-stiffness curves
-        const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
-        const double distance = std::sqrt(squared[slot]);
-        force[slot] =
-            numerics::hysteresis_force(aside.law, reach[slot] - distance, aside.max_compression);
-        push[slot] = force[slot] / distance;
+  // the springs a chunk at a time, its separations and forces on the stack (in the core's cache)
+  constexpr std::size_t kChunk = 64;
+  double separation[kChunk * D], squared[kChunk], force[kChunk], push[kChunk];
+  const double* reach = spring_reach_.data();
+  const double* stiffness = spring_stiffness_.data();
+  for (std::size_t first = 0; first < springs_.size(); first += kChunk) {
+    const std::size_t count = std::min(kChunk, springs_.size() - first);
+    const Spring* chunk = springs_.data() + first;
+    for (std::size_t j = 0; j < count; ++j) {  // the separations
+      const Spring& s = chunk[j];
+      if (s.second < 0) {
+        squared[j] = 1.0;  // a wall's: formed below
+        continue;
       }
-      double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
-      const double second_gain = gain_[std::size_t(s.second)];
-      for (int k = 0; k < D; ++k) {
-        aa[k] -= first_gain * push[slot] * separation[D * slot + k];
-        ab[k] += second_gain * push[slot] * separation[D * slot + k];
-      }
-    } else {  // offset: the wall's normal; height: the origin's above the wall
-      const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
       const double* ya = y + std::size_t(D) * std::size_t(s.first);
-      double height = aside.height;
-      for (int k = 0; k < D; ++k) height += s.offset[k] * ya[k];
-      force[slot] =
-          numerics::hysteresis_force(aside.law, reach[slot] - height, aside.max_compression);
-      if (force[slot] != 0.0)
-        for (int k = 0; k < D; ++k) aa[k] += first_gain * force[slot] * s.offset[k];
+      const double* yb = y + std::size_t(D) * std::size_t(s.second);
+      double sum = 0.0;
+      for (int k = 0; k < D; ++k) {
+        const double between = s.offset[k] + (yb[k] - ya[k]);
+        separation[D * j + k] = between;
+        sum += between * between;
+      }
+      squared[j] = sum;
     }
-    impulse[slot] = impulse_rate * force[slot];
+    for (std::size_t j = 0; j < count; ++j) {  // elastic Hertz, as ContactLaw::force
+      const double distance = std::sqrt(squared[j]);
+      const double gap = reach[first + j] - distance;
+      const double overlap = gap > 0.0 ? gap : 0.0;  // std::max's reference is a branch to gcc
+      force[j] = stiffness[first + j] * (overlap * std::sqrt(overlap));
+      push[j] = force[j] / distance;
+    }
+    for (std::size_t j = 0; j < count; ++j) {  // the accelerations, in the springs' order
+      const Spring& s = chunk[j];
+      double* aa = acceleration + std::size_t(D) * std::size_t(s.first);
+      const double first_gain = gain_[std::size_t(s.first)];
+      if (s.second >= 0) {
+        if (s.aside >= 0) {  // the bi-stiffness curves
+          const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
+          const double distance = std::sqrt(squared[j]);
+          force[j] = numerics::hysteresis_force(aside.law, reach[first + j] - distance,
+                                                aside.max_compression);
+          push[j] = force[j] / distance;
+        }
+        double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
+        const double second_gain = gain_[std::size_t(s.second)];
+        for (int k = 0; k < D; ++k) {
+          aa[k] -= first_gain * push[j] * separation[D * j + k];
+          ab[k] += second_gain * push[j] * separation[D * j + k];
+        }
+      } else {  // offset: the wall's normal; height: the origin's above the wall
+        const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
+        const double* ya = y + std::size_t(D) * std::size_t(s.first);
+        double height = aside.height;
+        for (int k = 0; k < D; ++k) height += s.offset[k] * ya[k];
+        force[j] =
+            numerics::hysteresis_force(aside.law, reach[first + j] - height, aside.max_compression);
+        if (force[j] != 0.0)
+          for (int k = 0; k < D; ++k) aa[k] += first_gain * force[j] * s.offset[k];
+      }
+      impulse[first + j] = impulse_rate * force[j];
+    }
   }
 }
 

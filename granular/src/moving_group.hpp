@@ -88,8 +88,8 @@ class MovingContacts::Group {
     double gap = 0.0, rate = 0.0;  // elastic: m, m/s, at the end of the last segment tracked
   };
   // A contact in the right-hand side as the right-hand side reads it, contiguous, in the order
-  // of active_ (its impulse's slot is its index), with its reach and stiffness in
-  // SpringForces; a law aside for the few that follow the bi-stiffness curves or touch a wall.
+  // of active_ (its impulse's slot is its index), with its reach and stiffness in arrays beside
+  // it; a law aside for the few that follow the bi-stiffness curves or touch a wall.
   struct Spring {
     std::int32_t first = 0, second = 0;  // member slots (second < 0: -1 - wall)
     std::int32_t aside = -1;  // of springs_aside_, or -1: elastic Hertz between two members
@@ -101,15 +101,6 @@ class MovingContacts::Group {
     numerics::ContactLaw law;
     double max_compression = 0.0;  // m
     double height = 0.0;           // m, against a wall: the first's origin above it
-  };
-  // The springs' forces in three passes, by arrays over the springs: the separations gathered
-  // from the state, the elastic Hertz forces formed together (their square roots and divisions
-  // are most of a packing's right-hand side, and the compiler vectorises them there), the
-  // accelerations scattered in the springs' order (the same sums as one pass, to the bit).
-  struct SpringForces {
-    std::vector<double> reach, stiffness;  // m, N / m^(3/2) (elastic Hertz); set at a restart
-    std::vector<double> separation;        // m, D per spring: the second's centre less the first's
-    std::vector<double> squared, force, push;  // m^2, N, N / m
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
@@ -174,7 +165,13 @@ class MovingContacts::Group {
   std::vector<std::int32_t> active_;  // of contacts_: those in the right-hand side
   std::vector<Spring> springs_;       // the same, as the right-hand side reads them
   std::vector<SpringAside> springs_aside_;
-  SpringForces forces_;
+  // the springs' reach (m) and elastic Hertz stiffness (N / m^(3/2)), by the springs' order. The
+  // right-hand side takes the springs a chunk at a time in three passes: the separations
+  // gathered from the state, the elastic Hertz forces formed together (their square roots and
+  // division are most of a packing's right-hand side, and the compiler packs two contacts'
+  // into one instruction), the accelerations scattered in the springs' order (the same sums as
+  // one pass, to the bit).
+  std::vector<double> spring_reach_, spring_stiffness_;
   std::vector<double> gain_;  // members': T / m, a force to the state's w' (moving_contacts.hpp)
   std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
   std::vector<std::int32_t> elastic_;  // of contacts_: the elastic, whose peaks are tracked
