@@ -6,7 +6,8 @@
 // striker's speed, against mimpact at tolerance 1e-10 (which agrees with LAMMPS's most
 // accurate step to its round-off: tests/packings/test_packing_convergence.cpp): the root mean
 // square over bodies (counter rms_error) and the worst body (worst_error). mimpact's time is
-// its wall time; LAMMPS's, its own "Loop time" (manual time: its start-up is not counted).
+// its wall time; LAMMPS's, its own "Loop time" (manual time: its start-up is not counted); a
+// run under a second is repeated, three in all, and the least time kept (least_time).
 // When /usr/bin/lmp is absent the LAMMPS runs are skipped with a message.
 // bench/packing_work_precision.py runs this program and writes docs/performance_packings.md.
 //
@@ -16,6 +17,7 @@
 
 #include <unistd.h>
 #include <Eigen/Dense>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -108,11 +110,27 @@ void set_errors(benchmark::State& state, const packings::PackingModel& model,
   state.counters["bodies"] = double(model.body_count());
 }
 
+// The least time (s) of `run` (which returns its time): a run under a second is repeated,
+// three in all. This machine's load slows a short run by up to half again, the two codes alike
+// or not (one benchmark run measured FCC 10^3 at tolerance 1e-4 in 0.059 s, five repetitions
+// in 0.038 to 0.052 s); the least of three is the time the code needs.
+template <class Timed>
+double least_time(Timed&& run) {
+  double least = run();
+  for (int again = 1; again < 3 && least < 1.0; ++again) least = std::min(least, run());
+  return least;
+}
+
 void BM_PackingMimpact(benchmark::State& state, int scene, int exponent) {
   const double tolerance = std::pow(10.0, -double(exponent));
   const Run& truth = reference(scene);
   Run run;
-  for (auto _ : state) run = run_mimpact(kScenes[scene], tolerance);
+  for (auto _ : state)
+    state.SetIterationTime(least_time([&] {
+      const auto start = std::chrono::steady_clock::now();
+      run = run_mimpact(kScenes[scene], tolerance);
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }));
   set_errors(state, run.model, run.velocity, truth.velocity);
   state.counters["steps"] = double(run.steps);
   // what the cost is to follow (issue 24, item c): the contacts that carried force and the run's
@@ -185,8 +203,13 @@ void BM_PackingLammps(benchmark::State& state, int scene, int halvings) {
   const Run& truth = reference(scene);
   Eigen::VectorXd velocity;
   for (auto _ : state) {
-    const double loop_time = run_lammps(truth.model, kScenes[scene], step, velocity);
-    if (loop_time < 0.0) {
+    bool failed = false;
+    const double loop_time = least_time([&] {
+      const double time = run_lammps(truth.model, kScenes[scene], step, velocity);
+      failed = failed || time < 0.0;
+      return failed ? 2.0 : time;  // no repetition after a failure
+    });
+    if (failed) {
       state.SkipWithError(
           "LAMMPS did not finish: bench/peers/lammps_packing.py prints why (its --selftest "
           "checks the installation)");
@@ -219,6 +242,7 @@ int main(int argc, char** argv) {
         benchmark::RegisterBenchmark(name("BM_PackingMimpact", level + 4).c_str(),
                                      BM_PackingMimpact, scene, level + 4)
             ->Iterations(1)
+            ->UseManualTime()
             ->Unit(benchmark::kSecond);
       benchmark::RegisterBenchmark(name("BM_PackingLammps", level).c_str(), BM_PackingLammps, scene,
                                    level)
