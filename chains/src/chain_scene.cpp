@@ -85,6 +85,7 @@ ChainScene read_chain_scene(json document, const std::string& source,
   scene.impact = granular::resolve_impact(scene.impact, scene.method, {}, source);
   check_record(scene, checks);
   check_precompression(scene, checks);
+  scene.compliant.check_tolerance(false, checks);  // a chain's gaps are linear: frozen
   return scene;
 }
 

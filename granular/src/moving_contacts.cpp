@@ -65,7 +65,7 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
       contacts_of_(bodies_.size()) {
   double energy = 0.0;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    bodies_[b].x = geometry.position[b];
+    bodies_[b].x = bodies_[b].anchor = geometry.position[b];
     bodies_[b].v = velocity[b];
     bodies_[b].inverse_mass = 1.0 / geometry.mass(Eigen::Index(b));
     energy += 0.5 * geometry.mass(Eigen::Index(b)) * velocity[b].squaredNorm();

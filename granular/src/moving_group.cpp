@@ -9,9 +9,9 @@
 #include "mimpact/numerics/internal/root_bracketing.hpp"
 
 // One group's integration over a window: M x'' = sum of its loaded contacts' forces along the
-// current normals, Dormand-Prince 5(4) on (displacements from the last restart, velocities,
-// impulses), restarted where one of its contacts joins, leaves or turns (docs/model.md,
-// section 17).
+// current normals, the Runge-Kutta-Nystrom pair RKN4(3)4FM on (displacements from the last
+// restart, velocities, impulses), restarted where one of its contacts joins, leaves or turns
+// (docs/model.md, section 17).
 namespace mimpact::granular {
 
 using plugins::internal::ContactEvent;
@@ -32,6 +32,7 @@ void MovingContacts::Group::add_member(std::int32_t body) {
   b.slot = std::int32_t(members_.size());
   members_.push_back(body);
   position_.push_back(b.position_at(time_));
+  shift_.push_back(b.shift_at(time_));
   velocity_.push_back(b.v);
 }
 
@@ -99,6 +100,7 @@ void MovingContacts::Group::carry_on(std::int32_t id, double start,
   id_ = id;
   start_ = time_ = start;
   position_.clear();
+  shift_.clear();
   velocity_.clear();
   // its former members first, already paired among themselves; then the new ones
   for (std::int32_t body : members)
@@ -142,7 +144,7 @@ void MovingContacts::Group::restart(double t) {
   time_ = t;
   const int d = dimension_;
   const std::size_t n = members_.size();
-  origin_ = position_;
+  origin_ = shift_;
   pair_new_members();
   watched_.clear();
   for (std::size_t m = 0; m < n; ++m)
@@ -161,8 +163,11 @@ void MovingContacts::Group::restart(double t) {
   elastic_.clear();
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
-    c.first = world_.bodies_[std::size_t(c.first_body)].slot;
+    const Body& first = world_.bodies_[std::size_t(c.first_body)];
+    c.first = first.slot;
     c.second = c.second_body < 0 ? c.second_body : world_.bodies_[std::size_t(c.second_body)].slot;
+    if (c.second >= 0)
+      c.anchor_offset = world_.bodies_[std::size_t(c.second_body)].anchor - first.anchor;
     c.slot = -1;
     if (c.elastic || c.loaded) {
       c.slot = std::int32_t(active_.size());
@@ -176,11 +181,11 @@ void MovingContacts::Group::restart(double t) {
         springs_aside_.push_back({.law = c.law, .max_compression = c.max_compression});
       }
       if (c.second >= 0) {
-        s.offset = origin_[std::size_t(c.second)] - origin_[std::size_t(c.first)];
+        s.offset =
+            c.anchor_offset + (origin_[std::size_t(c.second)] - origin_[std::size_t(c.first)]);
       } else {
-        const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
-        s.offset = wall.normal;
-        springs_aside_.back().height = wall.normal.dot(origin_[std::size_t(c.first)] - wall.point);
+        s.offset = world_.geometry_.walls[std::size_t(-1 - c.second)].normal;
+        springs_aside_.back().height = wall_height(c);
       }
     }
     (c.elastic ? elastic_ : scanned_).push_back(std::int32_t(i));
@@ -198,8 +203,9 @@ void MovingContacts::Group::restart(double t) {
     Contact& c = contacts_[std::size_t(index)];
     contact_gap(c, y_.data(), c.gap, c.rate);
   }
-  if (!dense_) dense_ = std::make_unique<numerics::internal::DenseOutput>(world_.options_.ode);
-  dense_->restart(y_, t, first_step(), 2 * std::size_t(d) * n);  // not the impulses
+  if (!dense_)
+    dense_ = std::make_unique<numerics::internal::RungeKuttaNystrom>(world_.options_.ode);
+  dense_->restart(y_, t, first_step(), std::size_t(d) * n, 1.0 / world_.time_scale_);
   fresh_ = true;
 }
 
@@ -223,7 +229,7 @@ double MovingContacts::Group::first_step() const {
 void MovingContacts::Group::member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
                                          Eigen::Vector3d& v) const {
   const int d = dimension_;
-  x = origin_[slot] + read(y + d * slot, d);
+  x = world_.bodies_[std::size_t(members_[slot])].anchor + (origin_[slot] + read(y + d * slot, d));
   v = read(y + d * (members_.size() + slot), d) / world_.time_scale_;
 }
 
@@ -236,10 +242,8 @@ void MovingContacts::Group::rhs(const double* y, double* dydt) {
 template <int D>
 void MovingContacts::Group::rhs_in(const double* y, double* dydt) {
   const std::size_t velocities = std::size_t(D) * members_.size();
-  // in the state's units: x' = w / T, w' = T a, q' = T F / m (moving_contacts.hpp)
-  const double inverse_time_scale = 1.0 / world_.time_scale_;
+  // in the state's units: w' = T a, q' = T F / m (x' = w / T is the Nystrom step's own)
   const double impulse_rate = world_.time_scale_ / world_.mass_scale_;
-  for (std::size_t i = 0; i < velocities; ++i) dydt[i] = y[velocities + i] * inverse_time_scale;
   double* acceleration = dydt + velocities;
   double* impulse = dydt + 2 * velocities;
   std::fill(acceleration, acceleration + velocities, 0.0);
@@ -321,6 +325,13 @@ void sphere_gap(const Eigen::Vector3d& xa, const Eigen::Vector3d& va, const Eige
 
 }  // namespace
 
+// m: a wall contact's bead above its wall at the last restart
+double MovingContacts::Group::wall_height(const Contact& c) const {
+  const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
+  const Body& bead = world_.bodies_[std::size_t(c.first_body)];
+  return wall.normal.dot(bead.anchor - wall.point) + wall.normal.dot(origin_[std::size_t(c.first)]);
+}
+
 // On every elastic contact at every step: read from the state directly.
 void MovingContacts::Group::contact_gap(const Contact& c, const double* y, double& gap,
                                         double& rate) const {
@@ -331,8 +342,7 @@ void MovingContacts::Group::contact_gap(const Contact& c, const double* y, doubl
   const double inverse_time_scale = 1.0 / world_.time_scale_;
   if (c.second < 0) {
     const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
-    double height = 0.0, speed = 0.0;
-    height = wall.normal.dot(origin_[std::size_t(c.first)] - wall.point);
+    double height = wall_height(c), speed = 0.0;
     for (int k = 0; k < d; ++k) {  // as the right-hand side forms it
       height += wall.normal(k) * y[a + k];
       speed += wall.normal(k) * y[velocities + a + k];
@@ -345,7 +355,7 @@ void MovingContacts::Group::contact_gap(const Contact& c, const double* y, doubl
   const double* origin_b = origin_[std::size_t(c.second)].data();
   double between[3], squared = 0.0, closing = 0.0;
   for (int k = 0; k < d; ++k) {  // as the right-hand side forms it
-    between[k] = (origin_b[k] - origin_a[k]) + (y[b + k] - y[a + k]);
+    between[k] = (c.anchor_offset[k] + (origin_b[k] - origin_a[k])) + (y[b + k] - y[a + k]);
     squared += between[k] * between[k];
     closing += between[k] * (y[velocities + b + k] - y[velocities + a + k]);
   }
@@ -374,7 +384,7 @@ void MovingContacts::Group::entry_gap(std::size_t entry, double t, const double*
 // The members entry reads (a watched body's member, a contact's one or two), written into
 // probe_ from the dense output at w's time: an event search reads those, not the whole state.
 void MovingContacts::Group::probe_entry(std::size_t entry,
-                                        const numerics::internal::DenseOutput::Weights& w) {
+                                        const numerics::internal::RungeKuttaNystrom::Weights& w) {
   const std::size_t n = members_.size();
   const auto d = std::size_t(dimension_);
   auto probe_member = [&](std::int32_t slot) {
@@ -390,7 +400,7 @@ void MovingContacts::Group::probe_entry(std::size_t entry,
 }
 
 void MovingContacts::Group::measure(double t, Samples& samples) {
-  const numerics::internal::DenseOutput::Weights w = dense_->weights_at(t);
+  const numerics::internal::RungeKuttaNystrom::Weights w = dense_->weights_at(t);
   for (std::size_t entry = 0; entry < samples.gap.size(); ++entry) {
     probe_entry(entry, w);
     entry_gap(entry, t, probe_.data(), samples.gap[entry], samples.rate[entry]);
@@ -462,7 +472,10 @@ void MovingContacts::Group::move_to(double t) {
   const int d = dimension_;
   const std::size_t n = members_.size();
   dense_->state_at(t, y_);
-  for (std::size_t m = 0; m < n; ++m) member_state(m, y_.data(), position_[m], velocity_[m]);
+  for (std::size_t m = 0; m < n; ++m) {
+    member_state(m, y_.data(), position_[m], velocity_[m]);
+    shift_[m] = origin_[m] + read(y_.data() + d * m, d);
+  }
   for (std::int32_t index : active_) {
     Contact& c = contacts_[std::size_t(index)];
     c.impulse +=
@@ -557,8 +570,8 @@ void MovingContacts::Group::handle(const Event& event) {
 
 void MovingContacts::Group::take_step() {
   fresh_ = false;
-  dense_->step([this](const numerics::internal::DenseOutput::State& y,
-                      numerics::internal::DenseOutput::State& dydt,
+  dense_->step([this](const numerics::internal::RungeKuttaNystrom::State& y,
+                      numerics::internal::RungeKuttaNystrom::State& dydt,
                       double) { rhs(y.data(), dydt.data()); });
   last_step_ = dense_->last_step();
   world_.stats_.member_steps += std::int64_t(members_.size());
@@ -603,6 +616,7 @@ void MovingContacts::Group::commit() {
   for (std::size_t m = 0; m < members_.size(); ++m) {
     Body& b = world_.bodies_[std::size_t(members_[m])];
     b.x = position_[m];
+    b.shift = shift_[m];
     b.v = velocity_[m];
     b.time = time_;
     b.owner = b.slot = -1;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mimpact/granular/moving_contacts.hpp"
-#include "mimpact/numerics/internal/dense_output.hpp"
+#include "mimpact/numerics/internal/runge_kutta_nystrom.hpp"
 #include "mimpact/plugins/internal/contact_events.hpp"
 
 namespace mimpact::granular {
@@ -19,6 +19,10 @@ namespace mimpact::granular {
 // A body between windows: where it is and how it moves.
 struct MovingContacts::Body {
   Eigen::Vector3d x = Eigen::Vector3d::Zero();  // m, at `time`
+  // m: where it began, and x less that, carried on its own: a gap is formed from the anchors'
+  // difference and the shifts', not from coordinates rounded to the packing's size at every
+  // window (which set a floor of 1e-12 of the speed on a 10-bead line's velocities)
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero(), shift = Eigen::Vector3d::Zero();
   Eigen::Vector3d v = Eigen::Vector3d::Zero();  // m/s
   double time = 0.0;                            // s; flying freely, it is at x + v (t - time)
   double inverse_mass = 0.0;
@@ -32,6 +36,7 @@ struct MovingContacts::Body {
   bool listed_moving = false;  // in MovingContacts::moving_
 
   Eigen::Vector3d position_at(double t) const { return x + v * (t - time); }
+  Eigen::Vector3d shift_at(double t) const { return shift + v * (t - time); }
 };
 
 class MovingContacts::Group {
@@ -86,6 +91,8 @@ class MovingContacts::Group {
     double max_force = 0.0, time_of_max_force = 0.0, dissipated = 0.0;
     std::int32_t slot = -1;        // of its impulse in the state, while in the right-hand side
     double gap = 0.0, rate = 0.0;  // elastic: m, m/s, at the end of the last segment tracked
+    Eigen::Vector3d anchor_offset = Eigen::Vector3d::Zero();  // m: the second's anchor less the
+                                                              // first's (two members)
   };
   // A contact in the right-hand side as the right-hand side reads it, contiguous, in the order
   // of active_ (its impulse's slot is its index), with its reach and stiffness in arrays beside
@@ -93,14 +100,14 @@ class MovingContacts::Group {
   struct Spring {
     std::int32_t first = 0, second = 0;  // member slots (second < 0: -1 - wall)
     std::int32_t aside = -1;  // of springs_aside_, or -1: elastic Hertz between two members
-    // m: the second's origin less the first's; against a wall, its unit normal
+    // m: the second's anchor and origin less the first's; against a wall, its unit normal
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   };
   // Their law does not change between restarts.
   struct SpringAside {
     numerics::ContactLaw law;
     double max_compression = 0.0;  // m
-    double height = 0.0;           // m, against a wall: the first's origin above it
+    double height = 0.0;           // m, against a wall: the first's anchor and origin above it
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
@@ -133,13 +140,14 @@ class MovingContacts::Group {
   template <int D>
   void rhs_in(const double* y, double* dydt);
   // a member's position (m) and velocity (m/s) along the state y
+  double wall_height(const Contact& c) const;
   void member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
                     Eigen::Vector3d& v) const;
   // gap and rate of contact c, or of watched pair w at time t, along the state y
   void contact_gap(const Contact& c, const double* y, double& gap, double& rate) const;
   void watch_gap(const Watch& w, double t, const double* y, double& gap, double& rate) const;
   void entry_gap(std::size_t entry, double t, const double* y, double& gap, double& rate) const;
-  void probe_entry(std::size_t entry, const numerics::internal::DenseOutput::Weights& w);
+  void probe_entry(std::size_t entry, const numerics::internal::RungeKuttaNystrom::Weights& w);
   void measure(double t, Samples& samples);
   bool next_event(double a, double b, Event& event);
   void move_to(double t);
@@ -160,7 +168,8 @@ class MovingContacts::Group {
   std::vector<std::int32_t> members_;
   std::size_t paired_members_ = 0;  // members whose pairs with the others are in contacts_
   std::vector<Eigen::Vector3d> position_, velocity_;  // members', at time_ (after move_to)
-  std::vector<Eigen::Vector3d> origin_;               // members' positions at the last restart
+  std::vector<Eigen::Vector3d> shift_;                // members' position less anchor, at time_
+  std::vector<Eigen::Vector3d> origin_;               // members' shifts at the last restart
   std::vector<Contact> contacts_;     // its members' contacts: every pair within reach
   std::vector<std::int32_t> active_;  // of contacts_: those in the right-hand side
   std::vector<Spring> springs_;       // the same, as the right-hand side reads them
@@ -176,7 +185,7 @@ class MovingContacts::Group {
   std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
   std::vector<std::int32_t> elastic_;  // of contacts_: the elastic, whose peaks are tracked
   std::vector<Watch> watched_;
-  std::unique_ptr<numerics::internal::DenseOutput> dense_;
+  std::unique_ptr<numerics::internal::RungeKuttaNystrom> dense_;
   std::vector<double> y_, probe_;
   Samples before_, after_, one_;
   double last_step_ = 0.0;

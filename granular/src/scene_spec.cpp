@@ -15,6 +15,14 @@ constexpr std::uintmax_t kLargestSceneFile = 64u << 20;
 
 }  // namespace
 
+void CompliantSpec::check_tolerance(bool moving, const SceneChecks& checks) const {
+  if (moving || tolerance <= kLoosestFrozenTolerance) return;
+  checks.fail("compliant.tolerance = " + to_text(tolerance) +
+              " is invalid where the frozen geometry integrates (a chain, or compliant.geometry "
+              "\"frozen\"); allowed: 1e-14 <= tolerance <= 1e-4 (up to 1e-2 in a packing's "
+              "moving geometry)");
+}
+
 void lend_material(nlohmann::json& document, std::initializer_list<const char*> bodies,
                    const std::string& source) {
   if (!document.is_object()) return;

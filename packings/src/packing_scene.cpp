@@ -71,6 +71,7 @@ void check_packing(const PackingScene& scene, const SceneChecks& checks) {
     checks.fail(
         "compliant.gaps = \"frozen\" with compliant.geometry = \"moving\"; allowed: frozen "
         "gaps in the frozen geometry only (the moving geometry's gaps are the beads' own)");
+  scene.compliant.check_tolerance(scene.compliant.geometry == granular::Geometry::moving, checks);
 }
 
 void check_walls(const PackingScene& scene, const SceneChecks& checks) {

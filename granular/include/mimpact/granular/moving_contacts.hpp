@@ -15,7 +15,7 @@
 namespace mimpact::granular {
 
 struct MovingContactsOptions {
-  // the integration of each group: Dormand-Prince 5(4) to these tolerances (positions to
+  // the integration of each group: Runge-Kutta-Nystrom 4(3) to these tolerances (positions to
   // absolute_tolerance m, velocities to absolute_tolerance / T m/s and impulses to
   // absolute_tolerance m / T N s, with T the quickest contact's overlap over its closing speed
   // and m the lightest mass), events to event_tolerance s
@@ -80,7 +80,8 @@ struct MovingContactsStats {
 // The cost follows what moves. A body that carries no force flies in closed form and costs
 // nothing. The others are split into groups, the bodies linked by loaded contacts (and those
 // close enough to meet them within a window): each group is integrated on its own by
-// Dormand-Prince 5(4), with its own steps. Elastic contacts are smooth forces of the positions
+// the Runge-Kutta-Nystrom pair RKN4(3)4FM (three forces a step: the forces depend on the
+// positions alone), with its own steps. Elastic contacts are smooth forces of the positions
 // and need no event; a group restarts only at its own events (a body it takes, an inelastic
 // contact joining, leaving, or turning to unload), located with dense output (TOMS 748). Groups
 // meet only at the ends of short windows (under a third of the quickest contact's duration): a

@@ -1,0 +1,228 @@
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mimpact/numerics/ode_options.hpp"
+
+namespace mimpact::numerics::internal {
+
+// The embedded Runge-Kutta-Nystrom pair RKN4(3)4FM of Dormand, El-Mikkawy & Prince (IMA J.
+// Numer. Anal. 7, 1987, table 3) with error control and dense output, for a flat state
+// y = (x, w, q) whose accelerations depend on the positions alone:
+//   x' = kappa w,   w' = f(x),   q' = g(x)
+// (q: integrals of the forces, which no derivative reads). A Nystrom step forms the stages'
+// positions only, and its four stages share the last with the next step's first: three
+// evaluations of f a step where Dormand-Prince 5(4) takes six (Hairer, Norsett & Wanner,
+// Solving ODEs I, section II.14). Between the step's ends the state is the quintic Hermite of
+// x (its values, rates and accelerations at both ends, error O(h^6)), its derivative for w, and
+// the cubic Hermite of q.
+class RungeKuttaNystrom {
+ public:
+  using State = std::vector<double>;
+
+  explicit RungeKuttaNystrom(const OdeOptions& options)
+      : absolute_(options.absolute_tolerance),
+        relative_(options.relative_tolerance),
+        max_step_(options.max_step) {}
+
+  // Starts again from (t, y) with a first step of `first_step`: y's first `positions`
+  // components are x, the next as many w (x' = velocity_scale w), the rest q.
+  void restart(const State& y, double t, double first_step, std::size_t positions,
+               double velocity_scale) {
+    current_ = 0;
+    y_[0] = y;
+    y_[1].resize(y.size());
+    for (State& c : carry_) c.assign(y.size(), 0.0);
+    for (State& k : dydt_) k.resize(y.size());
+    for (State& k : stage_) k.resize(y.size());
+    probe_ = y;
+    positions_ = positions;
+    kappa_ = velocity_scale;
+    time_ = t;
+    next_step_ = first_step;
+    derivative_known_ = false;
+    started_ = true;
+  }
+  void invalidate() { started_ = false; }
+  bool started() const { return started_; }
+
+  // One step of w' = f(x), q' = g(x) from time(): rhs(y, dydt, t) writes dydt's w and q parts
+  // from y's x part. [previous time, time()] becomes known.
+  template <class Rhs>
+  void step(Rhs&& rhs);
+
+  double time() const { return time_; }
+  const State& state() const { return y_[current_]; }
+  void state_at(double t, State& y) const {
+    const Weights w = weights_at(t);
+    y.resize(y_[current_].size());
+    for (std::size_t i = 0; i < y.size(); ++i) y[i] = interpolate(w, i);
+  }
+  // The Hermite bases at a time of the last step, for component_at.
+  struct Weights {
+    std::array<double, 6> position{};  // of x0, h x0', h^2 x0'', x1, h x1', h^2 x1''
+    std::array<double, 6> rate{};      // their derivatives in theta
+    std::array<double, 4> integral{};  // of q0, h q0', q1, h q1'
+  };
+  Weights weights_at(double t) const;
+  double component_at(const Weights& w, std::size_t i) const { return interpolate(w, i); }
+  double last_step() const { return last_step_; }
+  std::int64_t steps() const { return steps_; }
+
+ private:
+  static constexpr int kMostFailures = 500;
+
+  template <class Rhs>
+  double attempt(Rhs& rhs, double h);
+  double interpolate(const Weights& w, std::size_t i) const;
+
+  double absolute_, relative_, max_step_;
+  std::array<State, 2> y_, dydt_;  // the state and its derivative at the step's two ends
+  std::array<State, 2> stage_;     // f and g at the stages 2 and 3
+  std::array<State, 2> carry_;     // what each end's state lost to rounding (Kahan)
+  State probe_;                    // a stage's positions
+  std::size_t current_ = 0;
+  std::size_t positions_ = 0;
+  double kappa_ = 1.0;
+  double time_ = 0.0, previous_time_ = 0.0, next_step_ = 0.0, last_step_ = 0.0;
+  bool derivative_known_ = false;
+  bool started_ = false;
+  std::int64_t steps_ = 0;
+};
+
+// RKN4(3)4FM: nodes c, stage weights a (for x''), the fourth-order weights b (x) and bp (w, q),
+// the third-order ones e (x) and ep (w, q) given as their differences to the fourth.
+namespace rkn43 {
+constexpr double c2 = 1.0 / 4.0, c3 = 7.0 / 10.0;
+constexpr double a21 = 1.0 / 32.0;
+constexpr double a31 = 7.0 / 1000.0, a32 = 119.0 / 500.0;
+constexpr double b1 = 1.0 / 14.0, b2 = 8.0 / 27.0, b3 = 25.0 / 189.0;  // b4 = 0: first same as last
+constexpr double bp1 = 1.0 / 14.0, bp2 = 32.0 / 81.0, bp3 = 250.0 / 567.0, bp4 = 5.0 / 54.0;
+constexpr double e1 = b1 - -7.0 / 150.0, e2 = b2 - 67.0 / 150.0, e3 = b3 - 3.0 / 20.0,
+                 e4 = 0.0 - -1.0 / 20.0;
+constexpr double ep1 = bp1 - 13.0 / 21.0, ep2 = bp2 - -20.0 / 27.0, ep3 = bp3 - 275.0 / 189.0,
+                 ep4 = bp4 - -1.0 / 3.0;
+}  // namespace rkn43
+
+template <class Rhs>
+double RungeKuttaNystrom::attempt(Rhs& rhs, double h) {
+  using namespace rkn43;
+  const State& y = y_[current_];
+  const State& k1 = dydt_[current_];
+  State& out = y_[1 - current_];
+  const State& carried = carry_[current_];
+  State& lost = carry_[1 - current_];
+  // y + increment with the increment's rounded-off part carried to the next step (compensated
+  // summation: thousands of steps a body at tight tolerances round off no more than one)
+  auto add = [&](std::size_t i, double increment) {
+    const double exact = increment + carried[i];
+    out[i] = y[i] + exact;
+    lost[i] = exact - (out[i] - y[i]);
+  };
+  State& k4 = dydt_[1 - current_];
+  auto& [k2, k3] = stage_;
+  const std::size_t p = positions_, n = y.size();
+  const double* w = y.data() + p;
+  const double t = time_, hk = h * kappa_, hhk = h * hk;
+  // x'' = kappa f: the stages' positions x + c h kappa w + h^2 kappa sum a f
+  for (std::size_t i = 0; i < p; ++i) probe_[i] = y[i] + c2 * hk * w[i] + hhk * (a21 * k1[p + i]);
+  rhs(probe_, k2, t + c2 * h);
+  for (std::size_t i = 0; i < p; ++i)
+    probe_[i] = y[i] + c3 * hk * w[i] + hhk * (a31 * k1[p + i] + a32 * k2[p + i]);
+  rhs(probe_, k3, t + c3 * h);
+  for (std::size_t i = 0; i < p; ++i)
+    add(i, hk * w[i] + hhk * (b1 * k1[p + i] + b2 * k2[p + i] + b3 * k3[p + i]));
+  rhs(out, k4, t + h);
+  double largest = 0.0;
+  auto hold = [&](std::size_t i, double error, double rate) {
+    largest = std::max(
+        largest, std::abs(error) / (absolute_ + relative_ * (std::abs(y[i]) + std::abs(h * rate))));
+  };
+  for (std::size_t i = 0; i < p; ++i)
+    hold(i, hhk * (e1 * k1[p + i] + e2 * k2[p + i] + e3 * k3[p + i] + e4 * k4[p + i]),
+         kappa_ * w[i]);
+  for (std::size_t i = p; i < n; ++i) {
+    add(i, h * (bp1 * k1[i] + bp2 * k2[i] + bp3 * k3[i] + bp4 * k4[i]));
+    hold(i, h * (ep1 * k1[i] + ep2 * k2[i] + ep3 * k3[i] + ep4 * k4[i]), k1[i]);
+  }
+  return largest;
+}
+
+// A rejected step shrinks by 0.9 err^(-1/4), at most fivefold; an accepted one with err < 1/2
+// grows by as much, at most fivefold (the error estimate is O(h^4)); max_step bounds both.
+template <class Rhs>
+void RungeKuttaNystrom::step(Rhs&& rhs) {
+  if (!derivative_known_) {
+    rhs(y_[current_], dydt_[current_], time_);
+    derivative_known_ = true;
+  }
+  previous_time_ = time_;
+  for (int failures = 0;; ++failures) {
+    if (failures >= kMostFailures)
+      throw std::runtime_error("Runge-Kutta-Nystrom: " + std::to_string(kMostFailures) +
+                               " failed attempts at one step: the tolerance cannot be met");
+    double h = next_step_;
+    if (max_step_ > 0.0) h = std::min(h, max_step_);
+    const double error = attempt(rhs, h);
+    if (error > 1.0) {
+      next_step_ = h * std::max(0.9 * std::pow(error, -0.25), 0.2);
+      continue;
+    }
+    time_ += h;
+    next_step_ = error < 0.5 ? h * std::min(0.9 * std::pow(error, -0.25), 5.0) : h;
+    break;
+  }
+  current_ = 1 - current_;
+  last_step_ = time_ - previous_time_;
+  ++steps_;
+}
+
+inline RungeKuttaNystrom::Weights RungeKuttaNystrom::weights_at(double t) const {
+  const double h = time_ - previous_time_;
+  const double s = (t - previous_time_) / h, s2 = s * s, s3 = s2 * s;
+  Weights w;
+  // quintic Hermite: values, first and second derivatives at s = 0 and 1
+  w.position = {1.0 - s3 * (10.0 - 15.0 * s + 6.0 * s2),    s - s3 * (6.0 - 8.0 * s + 3.0 * s2),
+                0.5 * s2 - s3 * (1.5 - 1.5 * s + 0.5 * s2), s3 * (10.0 - 15.0 * s + 6.0 * s2),
+                -s3 * (4.0 - 7.0 * s + 3.0 * s2),           s3 * (0.5 - s + 0.5 * s2)};
+  w.rate = {-s2 * (30.0 - 60.0 * s + 30.0 * s2), 1.0 - s2 * (18.0 - 32.0 * s + 15.0 * s2),
+            s - s2 * (4.5 - 6.0 * s + 2.5 * s2), s2 * (30.0 - 60.0 * s + 30.0 * s2),
+            -s2 * (12.0 - 28.0 * s + 15.0 * s2), s2 * (1.5 - 4.0 * s + 2.5 * s2)};
+  w.integral = {1.0 + s2 * (2.0 * s - 3.0), s * (1.0 - s) * (1.0 - s), s2 * (3.0 - 2.0 * s),
+                s2 * (s - 1.0)};
+  return w;
+}
+
+inline double RungeKuttaNystrom::interpolate(const Weights& w, std::size_t i) const {
+  const State& y0 = y_[1 - current_];
+  const State& y1 = y_[current_];
+  const State& f0 = dydt_[1 - current_];
+  const State& f1 = dydt_[current_];
+  const double h = last_step_;
+  if (i < positions_) {  // x, with x' = kappa w, x'' = kappa f
+    const std::size_t v = positions_ + i;
+    const double hk = h * kappa_;
+    return w.position[0] * y0[i] + w.position[1] * hk * y0[v] + w.position[2] * h * hk * f0[v] +
+           w.position[3] * y1[i] + w.position[4] * hk * y1[v] + w.position[5] * h * hk * f1[v];
+  }
+  if (i < 2 * positions_) {  // w = x' / kappa
+    // with (x1 - x0) / (h kappa) = w0 + h sum b f, and the weights of w0 and w1 summing to one:
+    // w0 plus differences of forces, not the positions' difference (which rounds off to
+    // |x| / (h kappa)); the momentum of a group whose forces sum to zero is kept to round-off
+    using namespace rkn43;
+    const double step_mean = b1 * f0[i] + b2 * stage_[0][i] + b3 * stage_[1][i];
+    return y0[i] + w.rate[4] * (y1[i] - y0[i]) +
+           h * (w.rate[2] * f0[i] + w.rate[5] * f1[i] - w.rate[0] * step_mean);
+  }
+  return w.integral[0] * y0[i] + w.integral[1] * h * f0[i] + w.integral[2] * y1[i] +
+         w.integral[3] * h * f1[i];
+}
+
+}  // namespace mimpact::numerics::internal
