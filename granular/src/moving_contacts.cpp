@@ -88,7 +88,7 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
   // lasts 2.94 largest overlaps / closing speed: 3.9 overlap / closing. A window of at most 1.2
   // of these is under a third of the quickest contact, so that one begun between two groups
   // within a window is still closed at its end; and no body leaves its list's ball within it.
-  // A window lasts about four steps of its largest group, within [0.5, 1.2] overlap / closing,
+  // A window lasts about eight steps of its largest group, within [0.5, 1.2] overlap / closing,
   // or up to the lists' bound where one group integrates it (next_windows)
   list_bound_ = 0.25 * lists_.skin() / speed_bound_;
   longest_window_ = std::min(1.2 * overlap / closing, list_bound_);
@@ -206,15 +206,19 @@ double MovingContacts::next_meeting(double target) const {
 }
 
 // A window restarts its groups and makes them take every body that may meet them within it:
-// long windows restart less, short ones keep the groups small. A window of four steps of the
+// long windows restart less, short ones keep the groups small. A window of eight steps of the
 // largest group, within [0.5, 1.2] overlap / closing, does both: 0.5 restarted the FCC front's
 // group at every step at tolerance 1e-4, and 1.2 cost 56 x 56 a third more body steps at 1e-8.
-// Where one group integrated the last window, the next may take its four steps up to 2.5 times
+// (Four steps, as with Dormand-Prince's steps of six forces, made the Nystrom steps of three
+// restart twice as often: FCC 20^3 at 1e-3 took 49 windows in 0.81 s, 28 in 0.57 s with eight;
+// twelve or sixteen changed the time by no more than this machine's noise.)
+// Where one group integrated the last window, the next may take its steps up to 2.5 times
 // longer: no two groups can meet within it if it keeps one (run_window). An FCC 20^3 packing's
 // front group, stepping 6 us at tolerance 1e-4, took two steps a window of 8 us (0.84 s; 0.52 s
 // with these). Longer still, the front outran the halo formed at the window's start, and each
 // body it touched restarted the whole group (36 in one window of 24 us).
 std::pair<double, double> MovingContacts::next_windows() const {
+  constexpr double kWindowSteps = 8.0;
   const Group* largest = nullptr;
   int count = 0;
   for (const auto& group : groups_)
@@ -223,7 +227,7 @@ std::pair<double, double> MovingContacts::next_windows() const {
       if (!largest || group->members().size() > largest->members().size()) largest = group.get();
     }
   if (!largest) return {shortest_window_, shortest_window_};  // a group that starts steps short
-  const double steps = 4.0 * largest->last_step();
+  const double steps = kWindowSteps * largest->last_step();
   const double window = std::clamp(steps, shortest_window_, longest_window_);
   return {window, count == 1 ? std::clamp(steps, shortest_window_,
                                           std::min(2.5 * longest_window_, list_bound_))
