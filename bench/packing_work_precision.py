@@ -148,7 +148,9 @@ def page(context, results, skipped, png, command):
              "equal bead, e = 1) with the same Hertz law; each error is that of the bodies' "
              "velocities at the end time against mimpact at tolerance 1e-10, relative to the "
              "striker's speed: the RMS over the bodies and the worst body. mimpact's time is "
-             "its wall time; LAMMPS's its own loop time, start-up excluded; each the least "
+             "its run's (`wall_time` in summary.json: neighbour lists and integration; the "
+             "scene's parsing and the lattice's building excluded), LAMMPS's its own loop "
+             "time (its start-up, neighbour lists included, excluded); each the least "
              "of three runs where a run takes under a second.", "",
              f"![time against error](performance/{png.name})", ""]
     if skipped:

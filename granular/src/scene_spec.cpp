@@ -19,7 +19,7 @@ void CompliantSpec::check_tolerance(bool moving, const SceneChecks& checks) cons
   if (moving || tolerance <= kLoosestFrozenTolerance) return;
   checks.fail("compliant.tolerance = " + to_text(tolerance) +
               " is invalid where the frozen geometry integrates (a chain, or compliant.geometry "
-              "\"frozen\"); allowed: 1e-14 <= tolerance <= 1e-4 (up to 1e-2 in a packing's "
+              "\"frozen\"); allowed: 1e-14 <= tolerance <= 1e-4 (up to 1e-1 in a packing's "
               "moving geometry)");
 }
 

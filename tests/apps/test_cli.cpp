@@ -194,7 +194,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "record.interval = 1e-300 s: at least 3.04e+295 samples) needs about"},
         BadScene{"compliant_tolerance", "\"impact\"",
                  "\"method\": \"compliant\", \"compliant\": {\"tolerance\": 1e-300}, \"impact\"",
-                 "compliant.tolerance = 1e-300 is invalid; allowed: 1e-14 <= tolerance <= 1e-2"},
+                 "compliant.tolerance = 1e-300 is invalid; allowed: 1e-14 <= tolerance <= 1e-1"},
         BadScene{"compliant_tolerance_loose", "\"impact\"",
                  "\"method\": \"compliant\", \"compliant\": {\"tolerance\": 1e-3}, \"impact\"",
                  "compliant.tolerance = 0.001 is invalid where the frozen geometry integrates (a "

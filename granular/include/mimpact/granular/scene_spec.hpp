@@ -93,15 +93,15 @@ struct CompliantSpec {
   // "frozen"): above it the frozen integrator leaves out overlaps below 10 tolerance^(2 / (1 +
   // eta)) of the impact's (0.6 % of it at 1e-4, 4 % at 1e-3, a quarter at 1e-2), a departure
   // from the law rather than an integration error. The moving geometry resolves overlaps down to
-  // (1e-2 tolerance)^(1 / eta) of the impact's and takes up to 1e-2 (its Nystrom pair's error
-  // estimate is third order and errs on the safe side: an FCC 20^3 packing at 1e-2 is within
-  // RMS 1.5e-5 of the converged answer).
+  // (1e-2 tolerance)^(1 / eta) of the impact's (1 % at 1e-1) and takes up to 1e-1: its Nystrom
+  // pair's error estimate is third order and errs on the safe side (FCC 20^3 within RMS 2.6e-5
+  // of the converged velocities at 1e-2, 2.9e-4 at 1e-1; hexagonal 32^2 2.9e-4 and 2.3e-3).
   static constexpr double kLoosestFrozenTolerance = 1e-4;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
     // below 1e-14 the error estimates drown in round-off: the run never ends
-    field("tolerance", self.tolerance, within(1e-14, 1e-2).described("1e-14 <= tolerance <= 1e-2"));
+    field("tolerance", self.tolerance, within(1e-14, 1e-1).described("1e-14 <= tolerance <= 1e-1"));
     field("end_time", self.end_time, positive("s"));
     field("gaps", self.gaps);
     field("geometry", self.geometry);
