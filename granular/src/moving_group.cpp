@@ -188,20 +188,33 @@ void MovingContacts::Group::restart(double t) {
         springs_aside_.back().height = wall_height(c);
       }
     }
-    (c.elastic ? elastic_ : scanned_).push_back(std::int32_t(i));
+    if (c.elastic)
+      elastic_.push_back(c.slot);
+    else
+      scanned_.push_back(std::int32_t(i));
   }
   y_.assign(2 * std::size_t(d) * n + active_.size(), 0.0);
   for (std::size_t m = 0; m < n; ++m)
     for (int k = 0; k < d; ++k)
       y_[d * (n + m) + std::size_t(k)] = world_.time_scale_ * velocity_[m](k);
-  for (Samples* s : {&before_, &after_}) {
-    s->gap.resize(watched_.size() + scanned_.size());
-    s->rate.resize(s->gap.size());
-  }
+  entries_.resize(watched_.size() + scanned_.size());
+  for (std::size_t entry = 0; entry < entries_.size(); ++entry) entries_[entry] = entry;
+  entries_sampled_at_ = std::nan("");
   probe_.resize(y_.size());
-  for (std::int32_t index : elastic_) {
-    Contact& c = contacts_[std::size_t(index)];
-    contact_gap(c, y_.data(), c.gap, c.rate);
+  spring_gap_.resize(springs_.size());
+  spring_rate_.resize(springs_.size());
+  spring_force_.resize(springs_.size());
+  if (d == 3)
+    spring_gaps_in<3>(y_.data());
+  else
+    spring_gaps_in<2>(y_.data());
+  peaks_.resize(springs_.size());
+  for (std::size_t j = 0; j < springs_.size(); ++j) {
+    const Contact& c = contacts_[std::size_t(active_[j])];
+    peaks_[j] = {.gap = spring_gap_[j],
+                 .rate = spring_rate_[j],
+                 .max_force = c.max_force,
+                 .time_of_max = c.time_of_max_force};
   }
   if (!dense_)
     dense_ = std::make_unique<numerics::internal::RungeKuttaNystrom>(world_.options_.ode);
@@ -323,6 +336,32 @@ void sphere_gap(const Eigen::Vector3d& xa, const Eigen::Vector3d& va, const Eige
   rate = between.dot(vb - va) / distance;
 }
 
+// The cubic Hermite of a gap over a step of length h (s = (t - t0) / h in [0, 1]), from its gaps
+// g (m) and rates r (m/s) at both ends, where the rates differ in sign (r0 != 0): where its rate
+// changes sign, and its gap there. It places an elastic contact's smallest gap to h^4 / 384
+// times the gap's fourth derivative.
+struct HermiteTurn {
+  double s = 0.0, gap = 0.0;
+};
+HermiteTurn hermite_turn(double g0, double r0, double g1, double r1, double h) {
+  // dg/dt = (A s^2 + B s + C) / h, C = h r0
+  const double A = 6.0 * (g0 - g1) + 3.0 * h * (r0 + r1);
+  const double B = 6.0 * (g1 - g0) - h * (4.0 * r0 + 2.0 * r1);
+  const double C = h * r0;
+  double s;
+  if (std::abs(A) <= 1e-12 * (std::abs(B) + std::abs(C))) {
+    s = -C / B;
+  } else {  // the root where the rate leaves r0's sign, without cancellation
+    const double q = -0.5 * (B + std::copysign(std::sqrt(std::max(B * B - 4.0 * A * C, 0.0)), B));
+    const double x1 = q / A, x2 = q != 0.0 ? C / q : x1;
+    auto turning = [&](double x) { return x >= 0.0 && x <= 1.0 && (2.0 * A * x + B) * r0 <= 0.0; };
+    s = turning(x1) ? x1 : x2;
+  }
+  s = std::clamp(s, 0.0, 1.0);
+  return {s, (1.0 - s) * (1.0 - s) * ((1.0 + 2.0 * s) * g0 + s * h * r0) +
+                 s * s * ((3.0 - 2.0 * s) * g1 - (1.0 - s) * h * r1)};
+}
+
 }  // namespace
 
 // m: a wall contact's bead above its wall at the last restart
@@ -399,12 +438,41 @@ void MovingContacts::Group::probe_entry(std::size_t entry,
   if (c.second >= 0) probe_member(c.second);
 }
 
-void MovingContacts::Group::measure(double t, Samples& samples) {
+void MovingContacts::Group::measure(double t, const std::vector<std::size_t>& entries,
+                                    Samples& samples) {
   const numerics::internal::RungeKuttaNystrom::Weights w = dense_->weights_at(t);
-  for (std::size_t entry = 0; entry < samples.gap.size(); ++entry) {
-    probe_entry(entry, w);
-    entry_gap(entry, t, probe_.data(), samples.gap[entry], samples.rate[entry]);
+  samples.gap.resize(entries.size());
+  samples.rate.resize(entries.size());
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    probe_entry(entries[k], w);
+    entry_gap(entries[k], t, probe_.data(), samples.gap[k], samples.rate[k]);
   }
+}
+
+// Whether entry k, its gap and rate sampled at both ends of [a, b], may cross its threshold
+// within: it does at an end (classify), or the cubic Hermite of its gap turns inside and
+// reaches the threshold give or take the turn's depth (a dip that the cubic misses by its whole
+// depth is not a dip the step resolves). A joined contact turning inside is always suspect.
+bool MovingContacts::Group::suspect(std::size_t k, double h,
+                                    const plugins::internal::Overlaps& overlaps) const {
+  const std::size_t entry = entries_[k];
+  const bool joined =
+      entry >= watched_.size() && contacts_[std::size_t(scanned_[entry - watched_.size()])].loaded;
+  const double g0 = start_samples_.gap[k], g1 = end_samples_.gap[k], r0 = start_samples_.rate[k],
+               r1 = end_samples_.rate[k];
+  const plugins::internal::ContactWatch ends{
+      .joined = joined, .gap_before = g0, .gap_after = g1, .rate_before = r0, .rate_after = r1};
+  if (plugins::internal::classify(ends, overlaps).kind != ContactEvent::none) return true;
+  if (r0 * r1 < 0.0) {
+    if (joined) return true;
+    const HermiteTurn turn = hermite_turn(g0, r0, g1, r1, h);
+    return turn.gap - (std::min(g0, g1) - turn.gap) <= -overlaps.join;
+  }
+  // both ends' rates alike: suspect if the rate's own extremum inside is of the other sign
+  const double A = 6.0 * (g0 - g1) + 3.0 * h * (r0 + r1);
+  const double B = 6.0 * (g1 - g0) - h * (4.0 * r0 + 2.0 * r1);
+  const double vertex = A != 0.0 ? -B / (2.0 * A) : -1.0;
+  return vertex > 0.0 && vertex < 1.0 && (A * vertex * vertex + B * vertex + h * r0) * r0 < 0.0;
 }
 
 // The earliest event of the scanned entries in [a, b] of the current step: a watched body
@@ -416,19 +484,30 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
   const numerics::OdeOptions& ode = world_.options_.ode;
   const plugins::internal::Overlaps overlaps{.join = world_.options_.overlap_resolution,
                                              .leave = 0.5 * world_.options_.overlap_resolution};
+  // every entry at the segment's ends, its start kept from the segment before
+  if (entries_sampled_at_ != a) measure(a, entries_, start_samples_);
+  measure(b, entries_, end_samples_);
+  suspects_.clear();
+  for (std::size_t k = 0; k < entries_.size(); ++k)
+    if (suspect(k, b - a, overlaps)) suspects_.push_back(entries_[k]);
+  std::swap(start_samples_, end_samples_);
+  entries_sampled_at_ = b;
+  if (suspects_.empty()) return false;
+  // the suspects searched as the compliant integrator searches: at samples_per_step cuts
   one_.gap.resize(1);
   one_.rate.resize(1);
   auto locate = [&](double t0, double t1, const Samples& s0, const Samples& s1,
                     std::vector<numerics::internal::Crossing>& found) {
-    for (std::size_t entry = 0; entry < s0.gap.size(); ++entry) {
+    for (std::size_t k = 0; k < suspects_.size(); ++k) {
+      const std::size_t entry = suspects_[k];
       const bool watch = entry < watched_.size();
       const Contact* c =
           watch ? nullptr : &contacts_[std::size_t(scanned_[entry - watched_.size()])];
       const plugins::internal::ContactWatch w{.joined = c && c->loaded,
-                                              .gap_before = s0.gap[entry],
-                                              .gap_after = s1.gap[entry],
-                                              .rate_before = s0.rate[entry],
-                                              .rate_after = s1.rate[entry]};
+                                              .gap_before = s0.gap[k],
+                                              .gap_after = s1.gap[k],
+                                              .rate_before = s0.rate[k],
+                                              .rate_after = s1.rate[k]};
       const plugins::internal::Classified crossed = plugins::internal::classify(w, overlaps);
       if (crossed.kind == ContactEvent::none) continue;
       if (crossed.at_start) {
@@ -444,15 +523,14 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
             entry_gap(entry, t, probe_.data(), one_.gap[0], one_.rate[0]);
             return value(one_.gap[0], one_.rate[0]);
           },
-          t0, t1, value(s0.gap[entry], s0.rate[entry]), value(s1.gap[entry], s1.rate[entry]),
-          ode.event_tolerance);
+          t0, t1, value(s0.gap[k], s0.rate[k]), value(s1.gap[k], s1.rate[k]), ode.event_tolerance);
       if (entry == last_event_ && bracket.upper <= a + ode.event_tolerance) continue;
       found.push_back({long(entry), int(crossed.kind), bracket.upper});
     }
   };
   const auto found = numerics::internal::scan_events(
       a, b, ode.samples_per_step, ode.event_tolerance, before_, after_,
-      [&](double t, Samples& s) { measure(t, s); }, locate);
+      [&](double t, Samples& s) { measure(t, suspects_, s); }, locate);
   if (found.empty()) return false;
   const auto earliest = std::min_element(
       found.begin(), found.end(), [](const auto& p, const auto& q) { return p.time < q.time; });
@@ -478,6 +556,10 @@ void MovingContacts::Group::move_to(double t) {
   }
   for (std::int32_t index : active_) {
     Contact& c = contacts_[std::size_t(index)];
+    if (c.elastic) {  // its peak as track_peaks kept it
+      c.max_force = peaks_[std::size_t(c.slot)].max_force;
+      c.time_of_max_force = peaks_[std::size_t(c.slot)].time_of_max;
+    }
     c.impulse +=
         y_[2 * std::size_t(d) * n + std::size_t(c.slot)] * world_.mass_scale_ / world_.time_scale_;
     double gap, rate;
@@ -498,49 +580,80 @@ void MovingContacts::Group::track_peaks(double t0, double t1) {
   const bool at_step_end = t1 == dense_->time();
   if (!at_step_end) dense_->state_at(t1, probe_);
   const double* y = at_step_end ? dense_->state().data() : probe_.data();
-  for (std::int32_t index : elastic_) {
-    Contact& c = contacts_[std::size_t(index)];
-    double gap, rate;
-    contact_gap(c, y, gap, rate);
+  if (dimension_ == 3)
+    spring_gaps_in<3>(y);
+  else
+    spring_gaps_in<2>(y);
+  for (std::int32_t j : elastic_) {
+    const double gap = spring_gap_[std::size_t(j)], rate = spring_rate_[std::size_t(j)];
+    Peak& p = peaks_[std::size_t(j)];
     double compression = -gap, when = t1;
-    if (c.rate < 0.0 && rate >= 0.0 && gap < 0.0)
-      std::tie(compression, when) = peak(c, t0, t1, gap, rate);
-    c.gap = gap;
-    c.rate = rate;
-    const double force = numerics::hysteresis_force(c.law, compression, c.max_compression);
-    if (force > c.max_force) {
-      c.max_force = force;
-      c.time_of_max_force = when;
+    if (p.rate < 0.0 && rate >= 0.0 && gap < 0.0) {
+      const HermiteTurn turn = hermite_turn(p.gap, p.rate, gap, rate, t1 - t0);
+      compression = -turn.gap;
+      when = t0 + turn.s * (t1 - t0);
+    }
+    p.gap = gap;
+    p.rate = rate;
+    const double force = when == t1 ? spring_force_[std::size_t(j)] : spring_force(j, compression);
+    if (force > p.max_force) {
+      p.max_force = force;
+      p.time_of_max = when;
     }
   }
 }
 
-// The cubic Hermite of the gap over [t0, t1] (its gaps and rates at both ends, those of the
-// integration) places the smallest gap and gives it, to (t1 - t0)^4 / 384 times the gap's fourth
-// derivative, a step's error bound that shrinks with the tolerance. An evaluation of the dense
-// output there would cost the whole group's state for each peak, which made the cost grow as
-// the group times its contacts (a third of an FCC 20^3 run). Only the reported peak forces
-// depend on it, not the motion.
-std::pair<double, double> MovingContacts::Group::peak(const Contact& c, double t0, double t1,
-                                                      double gap, double rate) const {
-  const double h = t1 - t0;
-  // dg/dt = (A s^2 + B s + C) / h for s = (t - t0) / h in [0, 1]; C < 0 <= A + B + C
-  const double A = 6.0 * (c.gap - gap) + 3.0 * h * (c.rate + rate);
-  const double B = 6.0 * (gap - c.gap) - h * (4.0 * c.rate + 2.0 * rate);
-  const double C = h * c.rate;
-  double s;
-  if (std::abs(A) <= 1e-12 * (std::abs(B) + std::abs(C))) {
-    s = -C / B;
-  } else {  // the root where the rate turns positive, without cancellation
-    const double q = -0.5 * (B + std::copysign(std::sqrt(std::max(B * B - 4.0 * A * C, 0.0)), B));
-    const double r1 = q / A, r2 = q != 0.0 ? C / q : r1;
-    auto turning = [&](double x) { return x >= 0.0 && x <= 1.0 && 2.0 * A * x + B >= 0.0; };
-    s = turning(r1) ? r1 : r2;
+// Every spring's gap, rate and force along the state y, as contact_gap and the right-hand side
+// form them (to the bit), from the springs' arrays rather than the contacts (whose records,
+// read at every step, were a tenth of a run): the separations gathered, then the square roots
+// and divisions formed together.
+template <int D>
+void MovingContacts::Group::spring_gaps_in(const double* y) {
+  const std::size_t velocities = std::size_t(D) * members_.size();
+  const double inverse_time_scale = 1.0 / world_.time_scale_;
+  double* gap = spring_gap_.data();
+  double* rate = spring_rate_.data();
+  for (std::size_t j = 0; j < springs_.size(); ++j) {
+    const Spring& s = springs_[j];
+    if (s.second < 0) {  // a wall's: formed below
+      gap[j] = 1.0;
+      rate[j] = 0.0;
+      continue;
+    }
+    const double* ya = y + std::size_t(D) * std::size_t(s.first);
+    const double* yb = y + std::size_t(D) * std::size_t(s.second);
+    double squared = 0.0, closing = 0.0;
+    for (int k = 0; k < D; ++k) {
+      const double between = s.offset[k] + (yb[k] - ya[k]);
+      squared += between * between;
+      closing += between * (yb[velocities + k] - ya[velocities + k]);
+    }
+    gap[j] = squared;
+    rate[j] = closing;
   }
-  s = std::clamp(s, 0.0, 1.0);
-  const double smallest_gap = (1.0 - s) * (1.0 - s) * ((1.0 + 2.0 * s) * c.gap + s * h * c.rate) +
-                              s * s * ((3.0 - 2.0 * s) * gap - (1.0 - s) * h * rate);
-  return {-smallest_gap, t0 + s * h};
+  double* force = spring_force_.data();
+  for (std::size_t j = 0; j < springs_.size(); ++j) {
+    const double distance = std::sqrt(gap[j]);
+    gap[j] = distance - spring_reach_[j];
+    rate[j] = rate[j] * inverse_time_scale / distance;
+    const double overlap = gap[j] < 0.0 ? -gap[j] : 0.0;
+    force[j] = spring_stiffness_[j] * (overlap * std::sqrt(overlap));  // elastic Hertz
+  }
+  for (std::size_t j = 0; j < springs_.size(); ++j) {
+    if (springs_[j].second < 0) contact_gap(contacts_[std::size_t(active_[j])], y, gap[j], rate[j]);
+    if (springs_[j].aside >= 0) force[j] = spring_force(std::int32_t(j), -gap[j]);
+  }
+}
+
+// Spring j's force (N) at a compression (m), as the right-hand side forms it.
+double MovingContacts::Group::spring_force(std::int32_t j, double compression) const {
+  const Spring& s = springs_[std::size_t(j)];
+  if (s.aside >= 0) {
+    const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
+    return numerics::hysteresis_force(aside.law, compression, aside.max_compression);
+  }
+  const double overlap = compression > 0.0 ? compression : 0.0;
+  return spring_stiffness_[std::size_t(j)] * (overlap * std::sqrt(overlap));
 }
 
 void MovingContacts::Group::handle(const Event& event) {

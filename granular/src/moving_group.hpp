@@ -89,8 +89,7 @@ class MovingContacts::Group {
     double compression = 0.0, force = 0.0;  // m, N: at the last move
     double impulse = 0.0;                   // N s, until the last restart
     double max_force = 0.0, time_of_max_force = 0.0, dissipated = 0.0;
-    std::int32_t slot = -1;        // of its impulse in the state, while in the right-hand side
-    double gap = 0.0, rate = 0.0;  // elastic: m, m/s, at the end of the last segment tracked
+    std::int32_t slot = -1;  // of its impulse in the state, while in the right-hand side
     Eigen::Vector3d anchor_offset = Eigen::Vector3d::Zero();  // m: the second's anchor less the
                                                               // first's (two members)
   };
@@ -108,6 +107,11 @@ class MovingContacts::Group {
     numerics::ContactLaw law;
     double max_compression = 0.0;  // m
     double height = 0.0;           // m, against a wall: the first's anchor and origin above it
+  };
+  // An elastic spring's gap (m) and rate (m/s) at the end of the last segment tracked, and its
+  // largest force (N) and when (s).
+  struct Peak {
+    double gap = 0.0, rate = 0.0, max_force = 0.0, time_of_max = 0.0;
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
@@ -148,17 +152,25 @@ class MovingContacts::Group {
   void watch_gap(const Watch& w, double t, const double* y, double& gap, double& rate) const;
   void entry_gap(std::size_t entry, double t, const double* y, double& gap, double& rate) const;
   void probe_entry(std::size_t entry, const numerics::internal::RungeKuttaNystrom::Weights& w);
-  void measure(double t, Samples& samples);
+  // the entries' gaps and rates at t, in their order
+  void measure(double t, const std::vector<std::size_t>& entries, Samples& samples);
+  bool suspect(std::size_t k, double h, const plugins::internal::Overlaps& overlaps) const;
   bool next_event(double a, double b, Event& event);
   void move_to(double t);
   void handle(const Event& event);
-  // the elastic contacts' largest forces over [t0, t1] of the current step: at t1, or where
-  // their compression ends (located, without a restart: the force is smooth there)
+  // The elastic contacts' largest forces over [t0, t1] of the current step: at t1, or where
+  // their compression ends, placed by the cubic Hermite of the gap from its gaps and rates at
+  // both ends (without a restart: the force is smooth there). Only the reported peak forces
+  // depend on it, not the motion; an evaluation of the dense output at each peak would cost
+  // the whole group's state, which made the cost grow as the group times its contacts (a third
+  // of an FCC 20^3 run). Kept in peaks_, by the springs' order, and folded into the contacts by
+  // move_to.
   void track_peaks(double t0, double t1);
-  // where contact c's compression ends in [t0, t1] (its rate c.rate at t0, `rate` at t1): its
-  // largest overlap (m) and when (s)
-  std::pair<double, double> peak(const Contact& c, double t0, double t1, double gap,
-                                 double rate) const;
+  // every spring's gap, rate and force along the state y, into spring_gap_, spring_rate_ and
+  // spring_force_
+  template <int D>
+  void spring_gaps_in(const double* y);
+  double spring_force(std::int32_t spring, double compression) const;
   void take_step();
 
   MovingContacts& world_;
@@ -181,12 +193,21 @@ class MovingContacts::Group {
   // into one instruction), the accelerations scattered in the springs' order (the same sums as
   // one pass, to the bit).
   std::vector<double> spring_reach_, spring_stiffness_;
+  std::vector<double> spring_gap_, spring_rate_, spring_force_;  // m, m/s, N: of track_peaks
   std::vector<double> gain_;  // members': T / m, a force to the state's w' (moving_contacts.hpp)
   std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
-  std::vector<std::int32_t> elastic_;  // of contacts_: the elastic, whose peaks are tracked
+  std::vector<std::int32_t> elastic_;  // of springs_: the elastic, whose peaks are tracked
+  std::vector<Peak> peaks_;            // by the springs' order
   std::vector<Watch> watched_;
   std::unique_ptr<numerics::internal::RungeKuttaNystrom> dense_;
   std::vector<double> y_, probe_;
+  // The event search: every entry's gap and rate at the current segment's ends (the start kept
+  // from the segment before, at entries_sampled_at_: a segment's end is the next one's start), and
+  // the few whose ends or cubic Hermite say they may cross within (suspect()) sampled at the
+  // compliant integrator's cuts, where sampling every entry there was a tenth of a run.
+  std::vector<std::size_t> entries_, suspects_;  // entries: all; those searched in this segment
+  Samples start_samples_, end_samples_;
+  double entries_sampled_at_ = 0.0;  // s, or NaN: start_samples_ not taken
   Samples before_, after_, one_;
   double last_step_ = 0.0;
   bool fresh_ = true;  // restarted, no step taken since
