@@ -39,7 +39,6 @@ class RungeKuttaNystrom {
     current_ = 0;
     y_[0] = y;
     y_[1].resize(y.size());
-    for (State& c : carry_) c.assign(y.size(), 0.0);
     for (State& k : dydt_) k.resize(y.size());
     for (State& k : stage_) k.resize(y.size());
     probe_ = y;
@@ -86,7 +85,6 @@ class RungeKuttaNystrom {
   double absolute_, relative_, max_step_;
   std::array<State, 2> y_, dydt_;  // the state and its derivative at the step's two ends
   std::array<State, 2> stage_;     // f and g at the stages 2 and 3
-  std::array<State, 2> carry_;     // what each end's state lost to rounding (Kahan)
   State probe_;                    // a stage's positions
   std::size_t current_ = 0;
   std::size_t positions_ = 0;
@@ -117,15 +115,10 @@ double RungeKuttaNystrom::attempt(Rhs& rhs, double h) {
   const State& y = y_[current_];
   const State& k1 = dydt_[current_];
   State& out = y_[1 - current_];
-  const State& carried = carry_[current_];
-  State& lost = carry_[1 - current_];
-  // y + increment with the increment's rounded-off part carried to the next step (compensated
-  // summation: thousands of steps a body at tight tolerances round off no more than one)
-  auto add = [&](std::size_t i, double increment) {
-    const double exact = increment + carried[i];
-    out[i] = y[i] + exact;
-    lost[i] = exact - (out[i] - y[i]);
-  };
+  // (a compensated sum, the increments' round-off carried to the next step, changed nothing
+  // measurable: a line of beads against the chain 8.1e-13 without, 7.6e-13 with, and cost a
+  // twentieth of a packing's run)
+  auto add = [&](std::size_t i, double increment) { out[i] = y[i] + increment; };
   State& k4 = dydt_[1 - current_];
   auto& [k2, k3] = stage_;
   const std::size_t p = positions_, n = y.size();
