@@ -39,9 +39,10 @@ TEST(PackingCost, BodyStepsPerLoadedContactAndSecondDoNotGrowWithThePacking) {
 
 // A window that one group integrates may outlast the bound that keeps two groups from meeting
 // unseen within one (docs/model.md, section 17): an FCC 6^3 packing struck at 1 m/s takes such
-// windows at tolerance 1e-2, and its velocities stay within 1e-4 of the run at 1e-10,
+// windows at tolerance 3e-3, and its velocities stay within 1e-4 of the run at 1e-10,
 // whose short steps keep every window short, with its momentum kept to round-off.
 TEST(PackingCost, AWindowOfOneGroupOutlastsTwoGroupsBoundAndKeepsTheAnswer) {
+  constexpr double kLoose = 3e-3;
   auto run = [](double tolerance) {
     char compliant[120];
     std::snprintf(compliant, sizeof compliant,
@@ -53,7 +54,7 @@ TEST(PackingCost, AWindowOfOneGroupOutlastsTwoGroupsBoundAndKeepsTheAnswer) {
                           "velocity": [0, 0, 1]}], )" +
                        compliant + "}");
   };
-  const PackingCase loose = run(1e-2), fine = run(1e-10);
+  const PackingCase loose = run(kLoose), fine = run(1e-10);
   const Eigen::VectorXd& v = loose.run.impact.velocity_after;
   const Eigen::VectorXd& reference = fine.run.impact.velocity_after;
   const Eigen::Index bodies = loose.model.body_count();
@@ -68,9 +69,9 @@ TEST(PackingCost, AWindowOfOneGroupOutlastsTwoGroupsBoundAndKeepsTheAnswer) {
   }
   const double rms = std::sqrt(sum / double(bodies));  // relative to the striker's 1 m/s
   std::printf(
-      "windows beyond two groups' bound: %lld of %lld at 1e-2 (%lld at 1e-10); RMS %.3g, worst "
+      "windows beyond two groups' bound: %lld of %lld at %g (%lld at 1e-10); RMS %.3g, worst "
       "%.3g m/s\n",
-      (long long)loose.run.moving.extended_windows, (long long)loose.run.moving.windows,
+      (long long)loose.run.moving.extended_windows, (long long)loose.run.moving.windows, kLoose,
       (long long)fine.run.moving.extended_windows, rms, worst);
   EXPECT_GT(loose.run.moving.extended_windows, 0);
   EXPECT_EQ(fine.run.moving.extended_windows, 0);
