@@ -4,11 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
+#include "mimpact/numerics/internal/embedded_pair.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 
 namespace mimpact::numerics::internal {
@@ -25,50 +23,26 @@ namespace mimpact::numerics::internal {
 // dense output (a group's event search reads the few bodies it watches, not its whole state),
 // stages formed only where the right-hand side reads them (a contact's impulse, the integral
 // of its force, is read by no derivative), and no reallocation at every step.
-class DenseOutput {
+class DenseOutput : public EmbeddedPair<DenseOutput> {
  public:
-  using State = std::vector<double>;
-
   explicit DenseOutput(const OdeOptions& options)
       : DenseOutput(options.absolute_tolerance, options.relative_tolerance, options.max_step) {}
 
   // Error control to absolute + relative (|y| + h |y'|) per component, the largest of the
   // ratios below 1; max_step 0: no limit.
   DenseOutput(double absolute_tolerance, double relative_tolerance, double max_step = 0.0)
-      : absolute_(absolute_tolerance), relative_(relative_tolerance), max_step_(max_step) {}
+      : EmbeddedPair("Dormand-Prince", absolute_tolerance, relative_tolerance, max_step) {}
 
   // Starts again from (t, y), with a first step of `first_step`. The right-hand side reads the
   // first `read` components only (the others' derivatives depend on those alone): the stages
   // form those, and every component is stepped, interpolated and held to the tolerance alike.
   void restart(const State& y, double t, double first_step, std::size_t read = kAll) {
-    current_ = 0;
-    y_[0] = y;
-    y_[1].resize(y.size());
-    for (State& k : dydt_) k.resize(y.size());
+    start(y, t, first_step);
     for (State& k : stage_) k.resize(y.size());
     probe_.resize(y.size());
     read_ = std::min(read, y.size());
-    time_ = t;
-    next_step_ = first_step;
-    derivative_known_ = false;
-    started_ = true;
   }
-  // Marks the motion as changed: the next step must restart it.
-  void invalidate() { started_ = false; }
-  bool started() const { return started_; }
 
-  // One step of y' = rhs(y, dydt, t) from time(): [previous time, time()] becomes known.
-  template <class Rhs>
-  void step(Rhs&& rhs);
-
-  double time() const { return time_; }
-  const State& state() const { return y_[current_]; }
-  // The state at a time of the last step.
-  void state_at(double t, State& y) const {
-    const Weights w = weights_at(t);
-    y.resize(y_[current_].size());
-    for (std::size_t i = 0; i < y.size(); ++i) y[i] = interpolate(w, i);
-  }
   // The weights of the continuous extension at a time of the last step, for component_at.
   struct Weights {
     std::array<double, 6> of{};  // h b_i(theta) of k1, k3, k4, k5, k6, k7 (b_2(theta) = 0)
@@ -76,20 +50,33 @@ class DenseOutput {
   Weights weights_at(double t) const;
   // Component i of the state at the weights' time: the same number as state_at gives.
   double component_at(const Weights& w, std::size_t i) const { return interpolate(w, i); }
-  // The length of the last step (s), 0 before the first.
-  double last_step() const { return last_step_; }
-  // Steps taken since construction.
-  std::int64_t steps() const { return steps_; }
 
  private:
+  friend class EmbeddedPair<DenseOutput>;
   static constexpr std::size_t kAll = std::size_t(-1);
-  // failed attempts at one step before the step size is deemed unable to reach the tolerance
-  static constexpr int kMostFailures = 500;
 
   // the stages k2..k6 and the error estimate of a step of h from the current state into the
   // other buffer, with its derivative there (k7); returns the largest error ratio
   template <class Rhs>
   double attempt(Rhs& rhs, double h);
+  // Odeint's step adjuster: a rejected step shrinks by 0.9 err^(-1/3), at most fivefold; an
+  // accepted one with err < 1/2 grows by 0.9 err^(-1/5), at most fivefold; max_step bounds
+  // both (a step above it counts as an attempt failed).
+  bool admit(double& h) {
+    if (max_step_ > 0.0 && !(h <= max_step_)) {
+      next_step_ = max_step_;
+      return false;
+    }
+    return true;
+  }
+  double after_rejection(double h, double error) const {
+    return bounded(h * std::max(0.9 * std::pow(error, -1.0 / 3.0), 1.0 / 5.0));
+  }
+  double after_acceptance(double h, double error) const {
+    if (!(error < 0.5)) return h;
+    return bounded(h * (0.9 * std::pow(std::max(std::pow(5.0, -5.0), error), -1.0 / 5.0)));
+  }
+  double bounded(double h) const { return max_step_ > 0.0 ? std::min(h, max_step_) : h; }
   double interpolate(const Weights& w, std::size_t i) const {
     const State& y0 = y_[1 - current_];
     const State& k1 = dydt_[1 - current_];
@@ -98,18 +85,9 @@ class DenseOutput {
            w.of[3] * stage_[3][i] + w.of[4] * stage_[4][i] + w.of[5] * k7[i];
   }
 
-  double absolute_, relative_, max_step_;
-  std::array<State, 2> y_, dydt_;  // the state and its derivative at the step's two ends
-  std::array<State, 5> stage_;     // k2..k6
-  State probe_;                    // the state at a stage
-  std::size_t current_ = 0;        // of y_ and dydt_: the end of the last step
-  std::size_t read_ = 0;           // components the right-hand side reads
-  double time_ = 0.0, previous_time_ = 0.0;
-  double next_step_ = 0.0;
-  bool derivative_known_ = false;
-  bool started_ = false;
-  double last_step_ = 0.0;
-  std::int64_t steps_ = 0;
+  std::array<State, 5> stage_;  // k2..k6
+  State probe_;                 // the state at a stage
+  std::size_t read_ = 0;        // components the right-hand side reads
 };
 
 // The Butcher tableau of Dormand-Prince 5(4): nodes c, stage weights a, the fifth-order
@@ -168,42 +146,6 @@ double DenseOutput::attempt(Rhs& rhs, double h) {
                      (absolute_ + relative_ * (1.0 * std::abs(y[i]) + h_abs * std::abs(k1[i]))));
   }
   return largest;
-}
-
-// Odeint's step adjuster: a rejected step shrinks by 0.9 err^(-1/3), at most fivefold; an
-// accepted one with err < 1/2 grows by 0.9 err^(-1/5), at most fivefold; max_step bounds both.
-template <class Rhs>
-void DenseOutput::step(Rhs&& rhs) {
-  if (!derivative_known_) {
-    rhs(y_[current_], dydt_[current_], time_);
-    derivative_known_ = true;
-  }
-  previous_time_ = time_;
-  for (int failures = 0;; ++failures) {
-    if (failures >= kMostFailures)
-      throw std::runtime_error("Dormand-Prince: " + std::to_string(kMostFailures) +
-                               " failed attempts at one step: the tolerance cannot be met");
-    const double h = next_step_;
-    if (max_step_ > 0.0 && !(h <= max_step_)) {
-      next_step_ = max_step_;
-      continue;
-    }
-    const double error = attempt(rhs, h);
-    if (error > 1.0) {
-      next_step_ = h * std::max(0.9 * std::pow(error, -1.0 / 3.0), 1.0 / 5.0);
-      if (max_step_ > 0.0) next_step_ = std::min(next_step_, max_step_);
-      continue;
-    }
-    time_ += h;
-    if (error < 0.5) {
-      next_step_ = h * (0.9 * std::pow(std::max(std::pow(5.0, -5.0), error), -1.0 / 5.0));
-      if (max_step_ > 0.0) next_step_ = std::min(next_step_, max_step_);
-    }
-    break;
-  }
-  current_ = 1 - current_;
-  last_step_ = time_ - previous_time_;
-  ++steps_;
 }
 
 inline DenseOutput::Weights DenseOutput::weights_at(double t) const {

@@ -4,11 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
+#include "mimpact/numerics/internal/embedded_pair.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 
 namespace mimpact::numerics::internal {
@@ -23,47 +21,24 @@ namespace mimpact::numerics::internal {
 // Solving ODEs I, section II.14). Between the step's ends the state is the quintic Hermite of
 // x (its values, rates and accelerations at both ends, error O(h^6)), its derivative for w, and
 // the cubic Hermite of q.
-class RungeKuttaNystrom {
+class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
  public:
-  using State = std::vector<double>;
-
   explicit RungeKuttaNystrom(const OdeOptions& options)
-      : absolute_(options.absolute_tolerance),
-        relative_(options.relative_tolerance),
-        max_step_(options.max_step) {}
+      : EmbeddedPair("Runge-Kutta-Nystrom", options.absolute_tolerance, options.relative_tolerance,
+                     options.max_step) {}
 
   // Starts again from (t, y) with a first step of `first_step`: y's first `positions`
-  // components are x, the next as many w (x' = velocity_scale w), the rest q.
+  // components are x, the next as many w (x' = velocity_scale w), the rest q. The steps
+  // (step(), inherited) take rhs(y, dydt, t), which writes dydt's w and q parts from y's x part.
   void restart(const State& y, double t, double first_step, std::size_t positions,
                double velocity_scale) {
-    current_ = 0;
-    y_[0] = y;
-    y_[1].resize(y.size());
-    for (State& k : dydt_) k.resize(y.size());
+    start(y, t, first_step);
     for (State& k : stage_) k.resize(y.size());
     probe_ = y;
     positions_ = positions;
     kappa_ = velocity_scale;
-    time_ = t;
-    next_step_ = first_step;
-    derivative_known_ = false;
-    started_ = true;
   }
-  void invalidate() { started_ = false; }
-  bool started() const { return started_; }
 
-  // One step of w' = f(x), q' = g(x) from time(): rhs(y, dydt, t) writes dydt's w and q parts
-  // from y's x part. [previous time, time()] becomes known.
-  template <class Rhs>
-  void step(Rhs&& rhs);
-
-  double time() const { return time_; }
-  const State& state() const { return y_[current_]; }
-  void state_at(double t, State& y) const {
-    const Weights w = weights_at(t);
-    y.resize(y_[current_].size());
-    for (std::size_t i = 0; i < y.size(); ++i) y[i] = interpolate(w, i);
-  }
   // The Hermite bases at a time of the last step, for component_at.
   struct Weights {
     std::array<double, 6> position{};  // of x0, h x0', h^2 x0'', x1, h x1', h^2 x1''
@@ -72,27 +47,30 @@ class RungeKuttaNystrom {
   };
   Weights weights_at(double t) const;
   double component_at(const Weights& w, std::size_t i) const { return interpolate(w, i); }
-  double last_step() const { return last_step_; }
-  std::int64_t steps() const { return steps_; }
 
  private:
-  static constexpr int kMostFailures = 500;
+  friend class EmbeddedPair<RungeKuttaNystrom>;
 
   template <class Rhs>
   double attempt(Rhs& rhs, double h);
+  // A rejected step shrinks by 0.9 err^(-1/4), at most fivefold; an accepted one with err < 1/2
+  // grows by as much, at most fivefold (the error estimate is O(h^4)); max_step bounds both.
+  bool admit(double& h) const {
+    if (max_step_ > 0.0) h = std::min(h, max_step_);
+    return true;
+  }
+  double after_rejection(double h, double error) const {
+    return h * std::max(0.9 * std::pow(error, -0.25), 0.2);
+  }
+  double after_acceptance(double h, double error) const {
+    return error < 0.5 ? h * std::min(0.9 * std::pow(error, -0.25), 5.0) : h;
+  }
   double interpolate(const Weights& w, std::size_t i) const;
 
-  double absolute_, relative_, max_step_;
-  std::array<State, 2> y_, dydt_;  // the state and its derivative at the step's two ends
-  std::array<State, 2> stage_;     // f and g at the stages 2 and 3
-  State probe_;                    // a stage's positions
-  std::size_t current_ = 0;
+  std::array<State, 2> stage_;  // f and g at the stages 2 and 3
+  State probe_;                 // a stage's positions
   std::size_t positions_ = 0;
   double kappa_ = 1.0;
-  double time_ = 0.0, previous_time_ = 0.0, next_step_ = 0.0, last_step_ = 0.0;
-  bool derivative_known_ = false;
-  bool started_ = false;
-  std::int64_t steps_ = 0;
 };
 
 // RKN4(3)4FM: nodes c, stage weights a (for x''), the fourth-order weights b (x) and bp (w, q),
@@ -146,35 +124,6 @@ double RungeKuttaNystrom::attempt(Rhs& rhs, double h) {
     hold(i, h * (ep1 * k1[i] + ep2 * k2[i] + ep3 * k3[i] + ep4 * k4[i]), k1[i]);
   }
   return largest;
-}
-
-// A rejected step shrinks by 0.9 err^(-1/4), at most fivefold; an accepted one with err < 1/2
-// grows by as much, at most fivefold (the error estimate is O(h^4)); max_step bounds both.
-template <class Rhs>
-void RungeKuttaNystrom::step(Rhs&& rhs) {
-  if (!derivative_known_) {
-    rhs(y_[current_], dydt_[current_], time_);
-    derivative_known_ = true;
-  }
-  previous_time_ = time_;
-  for (int failures = 0;; ++failures) {
-    if (failures >= kMostFailures)
-      throw std::runtime_error("Runge-Kutta-Nystrom: " + std::to_string(kMostFailures) +
-                               " failed attempts at one step: the tolerance cannot be met");
-    double h = next_step_;
-    if (max_step_ > 0.0) h = std::min(h, max_step_);
-    const double error = attempt(rhs, h);
-    if (error > 1.0) {
-      next_step_ = h * std::max(0.9 * std::pow(error, -0.25), 0.2);
-      continue;
-    }
-    time_ += h;
-    next_step_ = error < 0.5 ? h * std::min(0.9 * std::pow(error, -0.25), 5.0) : h;
-    break;
-  }
-  current_ = 1 - current_;
-  last_step_ = time_ - previous_time_;
-  ++steps_;
 }
 
 inline RungeKuttaNystrom::Weights RungeKuttaNystrom::weights_at(double t) const {
