@@ -53,17 +53,31 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
 
   template <class Rhs>
   double attempt(Rhs& rhs, double h);
-  // A rejected step shrinks by 0.9 err^(-1/4), at most fivefold; an accepted one with err < 1/2
-  // grows by as much, at most fivefold (the error estimate is O(h^4)); max_step bounds both.
+  // A rejected step shrinks by 0.9 err^(-1/4), at most fivefold (the error estimate is O(h^4)).
+  // An accepted one changes by Gustafsson's proportional-integral rule (ACM TOMS 17, 1991), as
+  // Hairer's DOPRI5 with beta = 0.08 (Hairer, Norsett & Wanner, Solving ODEs I, section II.4): 0.9
+  // err^(-(1/4 - 0.75 beta)) err_last^beta within [1/5, 5], and not up right after a rejection;
+  // the last error is carried across restarts, where a group goes on with the same motion. 10 to
+  // 25 % of a packing's attempts were rejected under the rule without its integral part (keep
+  // the step for err in [1/2, 1], else 0.9 err^(-1/4)); this one takes 0.81 to 1.01 of the work
+  // at equal accuracy (docs/model.md, section 17). max_step bounds every step.
   bool admit(double& h) const {
     if (max_step_ > 0.0) h = std::min(h, max_step_);
     return true;
   }
-  double after_rejection(double h, double error) const {
+  double after_rejection(double h, double error) {
+    rejected_ = true;
     return h * std::max(0.9 * std::pow(error, -0.25), 0.2);
   }
-  double after_acceptance(double h, double error) const {
-    return error < 0.5 ? h * std::min(0.9 * std::pow(error, -0.25), 5.0) : h;
+  double after_acceptance(double h, double error) {
+    constexpr double kBeta = 0.08, kExponent = 0.25 - 0.75 * kBeta;
+    const double e = std::max(error, 1e-4);
+    double next =
+        h * std::clamp(0.9 * std::pow(e, -kExponent) * std::pow(last_error_, kBeta), 0.2, 5.0);
+    if (rejected_) next = std::min(next, h);
+    rejected_ = false;
+    last_error_ = e;
+    return next;
   }
   double interpolate(const Weights& w, std::size_t i) const;
 
@@ -71,6 +85,8 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   State probe_;                 // a stage's positions
   std::size_t positions_ = 0;
   double kappa_ = 1.0;
+  double last_error_ = 1e-4;  // of the last step accepted (Hairer's start before the first)
+  bool rejected_ = false;     // the last attempt was
 };
 
 // RKN4(3)4FM: nodes c, stage weights a (for x''), the fourth-order weights b (x) and bp (w, q),
