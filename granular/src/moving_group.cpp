@@ -24,6 +24,12 @@ Eigen::Vector3d read(const double* y, int dimension) {
   return x;
 }
 
+// N: an elastic Hertz contact's force K delta^(3/2) at an overlap >= 0 (m), as
+// ContactLaw::force forms it, written once for the right-hand side and the peaks alike
+double hertz_force(double stiffness, double overlap) {
+  return stiffness * (overlap * std::sqrt(overlap));
+}
+
 }  // namespace
 
 void MovingContacts::Group::add_member(std::int32_t body) {
@@ -178,7 +184,9 @@ void MovingContacts::Group::restart(double t) {
       const bool hertz = c.elastic && c.law.exponent == 1.5;
       if (!hertz || c.second < 0) {
         s.aside = std::int32_t(springs_aside_.size());
-        springs_aside_.push_back({.law = c.law, .max_compression = c.max_compression});
+        springs_aside_.push_back({.law = c.law,
+                                  .max_compression = c.max_compression,
+                                  .spring = std::int32_t(springs_.size() - 1)});
       }
       if (c.second >= 0) {
         s.offset =
@@ -288,7 +296,7 @@ void MovingContacts::Group::rhs_in(const double* y, double* dydt) {
       const double distance = std::sqrt(squared[j]);
       const double gap = reach[first + j] - distance;
       const double overlap = gap > 0.0 ? gap : 0.0;  // std::max's reference is a branch to gcc
-      force[j] = stiffness[first + j] * (overlap * std::sqrt(overlap));
+      force[j] = hertz_force(stiffness[first + j], overlap);
       push[j] = force[j] / distance;
     }
     for (std::size_t j = 0; j < count; ++j) {  // the accelerations, in the springs' order
@@ -343,11 +351,16 @@ void sphere_gap(const Eigen::Vector3d& xa, const Eigen::Vector3d& va, const Eige
 struct HermiteTurn {
   double s = 0.0, gap = 0.0;
 };
+// The Hermite's rate: dg/dt = (A s^2 + B s + C) / h, C = h r0.
+struct HermiteRate {
+  double A, B, C;
+  HermiteRate(double g0, double r0, double g1, double r1, double h)
+      : A(6.0 * (g0 - g1) + 3.0 * h * (r0 + r1)),
+        B(6.0 * (g1 - g0) - h * (4.0 * r0 + 2.0 * r1)),
+        C(h * r0) {}
+};
 HermiteTurn hermite_turn(double g0, double r0, double g1, double r1, double h) {
-  // dg/dt = (A s^2 + B s + C) / h, C = h r0
-  const double A = 6.0 * (g0 - g1) + 3.0 * h * (r0 + r1);
-  const double B = 6.0 * (g1 - g0) - h * (4.0 * r0 + 2.0 * r1);
-  const double C = h * r0;
+  const auto [A, B, C] = HermiteRate(g0, r0, g1, r1, h);
   double s;
   if (std::abs(A) <= 1e-12 * (std::abs(B) + std::abs(C))) {
     s = -C / B;
@@ -469,10 +482,9 @@ bool MovingContacts::Group::suspect(std::size_t k, double h,
     return turn.gap - (std::min(g0, g1) - turn.gap) <= -overlaps.join;
   }
   // both ends' rates alike: suspect if the rate's own extremum inside is of the other sign
-  const double A = 6.0 * (g0 - g1) + 3.0 * h * (r0 + r1);
-  const double B = 6.0 * (g1 - g0) - h * (4.0 * r0 + 2.0 * r1);
+  const auto [A, B, C] = HermiteRate(g0, r0, g1, r1, h);
   const double vertex = A != 0.0 ? -B / (2.0 * A) : -1.0;
-  return vertex > 0.0 && vertex < 1.0 && (A * vertex * vertex + B * vertex + h * r0) * r0 < 0.0;
+  return vertex > 0.0 && vertex < 1.0 && (A * vertex * vertex + B * vertex + C) * r0 < 0.0;
 }
 
 // The earliest event of the scanned entries in [a, b] of the current step: a watched body
@@ -637,11 +649,12 @@ void MovingContacts::Group::spring_gaps_in(const double* y) {
     gap[j] = distance - spring_reach_[j];
     rate[j] = rate[j] * inverse_time_scale / distance;
     const double overlap = gap[j] < 0.0 ? -gap[j] : 0.0;
-    force[j] = spring_stiffness_[j] * (overlap * std::sqrt(overlap));  // elastic Hertz
+    force[j] = hertz_force(spring_stiffness_[j], overlap);
   }
-  for (std::size_t j = 0; j < springs_.size(); ++j) {
+  for (const SpringAside& aside : springs_aside_) {  // walls and bi-stiffness curves
+    const auto j = std::size_t(aside.spring);
     if (springs_[j].second < 0) contact_gap(contacts_[std::size_t(active_[j])], y, gap[j], rate[j]);
-    if (springs_[j].aside >= 0) force[j] = spring_force(std::int32_t(j), -gap[j]);
+    force[j] = spring_force(aside.spring, -gap[j]);
   }
 }
 
@@ -653,7 +666,7 @@ double MovingContacts::Group::spring_force(std::int32_t j, double compression) c
     return numerics::hysteresis_force(aside.law, compression, aside.max_compression);
   }
   const double overlap = compression > 0.0 ? compression : 0.0;
-  return spring_stiffness_[std::size_t(j)] * (overlap * std::sqrt(overlap));
+  return hertz_force(spring_stiffness_[std::size_t(j)], overlap);
 }
 
 void MovingContacts::Group::handle(const Event& event) {

@@ -107,6 +107,7 @@ class MovingContacts::Group {
     numerics::ContactLaw law;
     double max_compression = 0.0;  // m
     double height = 0.0;           // m, against a wall: the first's anchor and origin above it
+    std::int32_t spring = 0;       // its index in springs_
   };
   // An elastic spring's gap (m) and rate (m/s) at the end of the last segment tracked, and its
   // largest force (N) and when (s).
