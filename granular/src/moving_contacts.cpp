@@ -348,14 +348,16 @@ void MovingContacts::form_groups(double end) {
   for (std::size_t l = 0; l < loaded_count; ++l) {
     const std::int32_t i = linked[l];
     const Body& a = bodies_[std::size_t(i)];
+    const double speed = a.v.norm();
     for (std::int32_t k : lists_.bodies_near(i)) {
       Body& b = bodies_[std::size_t(k)];
       const bool loaded = b.slot >= 0 && std::size_t(b.slot) < loaded_count;
       if (loaded && k < i) continue;  // the pair once
-      const double gap =
-          (b.position_at(time_) - a.x).norm() - geometry_.radius(i) - geometry_.radius(k);
-      const double reach = 2.0 * (a.v.norm() + b.v.norm()) * window;
-      if (gap >= (loaded ? reach : reach + options_.overlap_resolution)) continue;
+      // apart by more than the radii and the reach: compared squared, a square root less a pair
+      const double reach = 2.0 * (speed + b.v.norm()) * window;
+      const double apart = geometry_.radius(i) + geometry_.radius(k) +
+                           (loaded ? reach : reach + options_.overlap_resolution);
+      if ((b.position_at(time_) - a.x).squaredNorm() >= apart * apart) continue;
       if (!loaded && b.slot < 0) {
         b.slot = std::int32_t(linked.size());
         linked.push_back(k);

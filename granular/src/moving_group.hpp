@@ -207,6 +207,7 @@ class MovingContacts::Group {
   // the few whose ends or cubic Hermite say they may cross within (suspect()) sampled at the
   // compliant integrator's cuts, where sampling every entry there was a tenth of a run.
   std::vector<std::size_t> entries_, suspects_;  // entries: all; those searched in this segment
+  std::vector<std::int32_t> taken_;  // world bodies the next take event adds (next_event)
   Samples start_samples_, end_samples_;
   double entries_sampled_at_ = 0.0;  // s, or NaN: start_samples_ not taken
   Samples before_, after_, one_;
