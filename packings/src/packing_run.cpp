@@ -86,6 +86,22 @@ double contacts_per_step(const granular::ImpactOutcome& impact) {
                                  : 0.0;
 }
 
+// The work of a step as the console tells it: the bodies a group's step carries in the moving
+// geometry, the contacts updated by the LZB integrators, nothing where neither is counted (the
+// frozen compliant contacts)
+std::string step_work(const granular::ImpactOutcome& impact,
+                      const granular::MovingContactsStats& moving) {
+  char text[64];
+  if (moving.steps > 0)
+    std::snprintf(text, sizeof text, ", %.1f bodies per step",
+                  double(moving.member_steps) / double(moving.steps));
+  else if (impact.result.contact_steps > 0)
+    std::snprintf(text, sizeof text, ", %.1f contacts per step", contacts_per_step(impact));
+  else
+    text[0] = '\0';
+  return text;
+}
+
 // the contacts the impact reached: those that carried a force
 Eigen::Index contacts_reached(const granular::ImpactOutcome& impact) {
   return Eigen::Index((impact.result.max_force.array() > 0.0).count());
@@ -221,13 +237,13 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
   std::snprintf(
       text, sizeof text,
       "%lld beads, %lld strikers, %lld contacts, %s\n"
-      "%lld steps, %.1f contacts per step, %lld contacts reached, in %.3g s of computation; "
+      "%lld steps%s, %lld contacts reached, in %.3g s of computation; "
       "the impact lasts %.6g s (%s)\n"
       "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum %s -> %s N s\n"
       "fastest body after the impact: %lld, %s m/s (all in summary.json)\n",
       (long long)model.bead_count, (long long)(model.body_count() - model.bead_count),
       (long long)model.contact_count(), method_name(scene, run).c_str(),
-      (long long)impact.result.steps, contacts_per_step(impact),
+      (long long)impact.result.steps, step_work(impact, run.moving).c_str(),
       (long long)contacts_reached(impact), impact.wall_time, impact.result.duration,
       impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
                              : std::string(numerics::to_string(impact.result.status)).c_str(),
