@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "mimpact/granular/moving_contacts.hpp"
@@ -172,6 +173,19 @@ class MovingContacts::Group {
   template <int D>
   void spring_gaps_in(const double* y);
   double spring_force(std::int32_t spring, double compression) const;
+  using State = numerics::internal::RungeKuttaNystrom::State;
+  // The group's motion as the Nystrom step reads it: its right-hand side, and the amendment at
+  // the contacts that switched within a step.
+  struct Motion {
+    Group& group;
+    void operator()(const State& y, State& dydt, double) { group.rhs(y.data(), dydt.data()); }
+    void amend(const State& start, State& end, double h,
+               std::span<const std::size_t> switching) const {
+      group.amend_onsets(start, end, h, switching);
+    }
+  };
+  void amend_onsets(const State& start, State& end, double h,
+                    std::span<const std::size_t> switching) const;
   void take_step();
 
   MovingContacts& world_;

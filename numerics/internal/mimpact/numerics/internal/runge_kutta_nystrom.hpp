@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "mimpact/numerics/internal/embedded_pair.hpp"
@@ -31,6 +32,11 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   // Starts again from (t, y) with a first step of `first_step`: y's first `positions`
   // components are x, the next as many w (x' = velocity_scale w), the rest q. The steps
   // (step(), inherited) take rhs(y, dydt, t), which writes dydt's w and q parts from y's x part.
+  // An rhs that also has amend(y0, y1, h, switching) is handed every attempted step's end y1
+  // to amend, with the q components whose rates switched on or off within the step (zero at
+  // some of its stages, not at others): a contact force that began or ended there, whose
+  // quadrature the rhs may correct (onset_quadrature.hpp). The error estimate is the
+  // unamended pair's.
   void restart(const State& y, double t, double first_step, std::size_t positions,
                double velocity_scale) {
     start(y, t, first_step);
@@ -82,8 +88,9 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   }
   double interpolate(const Weights& w, std::size_t i) const;
 
-  std::array<State, 2> stage_;  // f and g at the stages 2 and 3
-  State probe_;                 // a stage's positions
+  std::array<State, 2> stage_;          // f and g at the stages 2 and 3
+  State probe_;                         // a stage's positions
+  std::vector<std::size_t> switching_;  // of the q components, for amend (its first few)
   std::size_t positions_ = 0;
   double kappa_ = 1.0;
   double last_error_ = 1e-4;  // of the last step accepted (Hairer's start before the first)
@@ -102,6 +109,7 @@ constexpr double e1 = b1 - -7.0 / 150.0, e2 = b2 - 67.0 / 150.0, e3 = b3 - 3.0 /
                  e4 = 0.0 - -1.0 / 20.0;
 constexpr double ep1 = bp1 - 13.0 / 21.0, ep2 = bp2 - -20.0 / 27.0, ep3 = bp3 - 275.0 / 189.0,
                  ep4 = bp4 - -1.0 / 3.0;
+constexpr std::array<double, 4> nodes{0.0, c2, c3, 1.0}, velocity_weights{bp1, bp2, bp3, bp4};
 }  // namespace rkn43
 
 template <class Rhs>
@@ -142,9 +150,28 @@ double RungeKuttaNystrom::attempt(Rhs& rhs, double h) {
   for (std::size_t i = 0; i < p; ++i)
     hold(i, hhk * (e1 * k1[p + i] + e2 * k2[p + i] + e3 * k3[p + i] + e4 * k4[p + i]),
          kappa_ * w[i]);
-  for (std::size_t i = p; i < n; ++i) {
+  constexpr bool kAmends =
+      requires(Rhs & r, const State& a, State& b, double s, std::span<const std::size_t> i) {
+    r.amend(a, b, s, i);
+  };
+  auto velocity_and_error = [&](std::size_t i) {
     add(i, h * (bp1 * k1[i] + bp2 * k2[i] + bp3 * k3[i] + bp4 * k4[i]));
     hold(i, h * (ep1 * k1[i] + ep2 * k2[i] + ep3 * k3[i] + ep4 * k4[i]), k1[i]);
+  };
+  for (std::size_t i = p; i < 2 * p; ++i) velocity_and_error(i);
+  if constexpr (kAmends) {
+    // the rates are the forces' magnitudes, >= 0: some zero and not all, written without a
+    // branch (a switch is rare)
+    if (switching_.size() < n - 2 * p) switching_.resize(n - 2 * p);
+    std::size_t switched = 0;
+    for (std::size_t i = 2 * p; i < n; ++i) {
+      velocity_and_error(i);
+      switching_[switched] = i - 2 * p;
+      switched += (k1[i] * k2[i] * k3[i] * k4[i] == 0.0) & (k1[i] + k2[i] + k3[i] + k4[i] > 0.0);
+    }
+    rhs.amend(y, out, h, std::span<const std::size_t>(switching_.data(), switched));
+  } else {
+    for (std::size_t i = 2 * p; i < n; ++i) velocity_and_error(i);
   }
   return largest;
 }
