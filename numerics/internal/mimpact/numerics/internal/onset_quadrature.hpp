@@ -73,7 +73,8 @@ OnsetQuadrature hertz_onset_quadrature(const Eigen::Vector3d& r0, const Eigen::V
     const auto& w = Gauss::weights();
     for (std::size_t k = 0; k < x.size(); ++k)
       for (const double sign : {-1.0, 1.0}) {
-        const double u = 0.5 * (1.0 + sign * x[k]), weight = 0.5 * w[k] * 2.0 * half * u;
+        // u on [0, 1] (Gauss weight w / 2), ds = 2 half u du
+        const double u = 0.5 * (1.0 + sign * x[k]), weight = w[k] * half * u;
         for (const double s : {first + half * u * u, last - half * u * u}) {
           const Force f = force(s);
           out.impulse += weight * f.vector;
