@@ -210,20 +210,10 @@ void MovingContacts::Group::restart(double t) {
   for (std::size_t entry = 0; entry < entries_.size(); ++entry) entries_[entry] = entry;
   entries_sampled_at_ = std::nan("");
   probe_.resize(y_.size());
-  spring_gap_.resize(springs_.size());
-  spring_rate_.resize(springs_.size());
-  spring_force_.resize(springs_.size());
-  if (d == 3)
-    spring_gaps_in<3>(y_.data());
-  else
-    spring_gaps_in<2>(y_.data());
   peaks_.resize(springs_.size());
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     const Contact& c = contacts_[std::size_t(active_[j])];
-    peaks_[j] = {.gap = spring_gap_[j],
-                 .rate = spring_rate_[j],
-                 .max_force = c.max_force,
-                 .time_of_max = c.time_of_max_force};
+    peaks_[j] = {.max_force = c.max_force, .time_of_max = c.time_of_max_force};
   }
   if (!dense_)
     dense_ = std::make_unique<numerics::internal::RungeKuttaNystrom>(world_.options_.ode);
@@ -604,85 +594,15 @@ void MovingContacts::Group::move_to(double t) {
 }
 
 void MovingContacts::Group::track_peaks(double t0, double t1) {
-  if (elastic_.empty() || t1 <= t0) return;
-  const bool at_step_end = t1 == dense_->time();
-  if (!at_step_end) dense_->state_at(t1, probe_);
-  const double* y = at_step_end ? dense_->state().data() : probe_.data();
-  if (dimension_ == 3)
-    spring_gaps_in<3>(y);
-  else
-    spring_gaps_in<2>(y);
+  if (t1 <= t0) return;
+  const std::size_t impulses = 2 * std::size_t(dimension_) * members_.size();
+  // the impulses' rates are T F / m (rhs_in)
+  const double to_force = world_.mass_scale_ / world_.time_scale_;
   for (std::int32_t j : elastic_) {
-    const double gap = spring_gap_[std::size_t(j)], rate = spring_rate_[std::size_t(j)];
     Peak& p = peaks_[std::size_t(j)];
-    double compression = -gap, when = t1;
-    if (p.rate < 0.0 && rate >= 0.0 && gap < 0.0) {
-      const HermiteTurn turn = hermite_turn(p.gap, p.rate, gap, rate, t1 - t0);
-      compression = -turn.gap;
-      when = t0 + turn.s * (t1 - t0);
-    }
-    p.gap = gap;
-    p.rate = rate;
-    const double force = when == t1 ? spring_force_[std::size_t(j)] : spring_force(j, compression);
-    if (force > p.max_force) {
-      p.max_force = force;
-      p.time_of_max = when;
-    }
+    const auto peak = dense_->rate_peak(impulses + std::size_t(j), t0, t1, p.max_force / to_force);
+    if (!std::isnan(peak.time)) p = {.max_force = to_force * peak.value, .time_of_max = peak.time};
   }
-}
-
-// Every spring's gap, rate and force along the state y, as contact_gap and the right-hand side
-// form them (to the bit), from the springs' arrays rather than the contacts (whose records,
-// read at every step, were a tenth of a run): the separations gathered, then the square roots
-// and divisions formed together.
-template <int D>
-void MovingContacts::Group::spring_gaps_in(const double* y) {
-  const std::size_t velocities = std::size_t(D) * members_.size();
-  const double inverse_time_scale = 1.0 / world_.time_scale_;
-  double* gap = spring_gap_.data();
-  double* rate = spring_rate_.data();
-  for (std::size_t j = 0; j < springs_.size(); ++j) {
-    const Spring& s = springs_[j];
-    if (s.second < 0) {  // a wall's: formed below
-      gap[j] = 1.0;
-      rate[j] = 0.0;
-      continue;
-    }
-    const double* ya = y + std::size_t(D) * std::size_t(s.first);
-    const double* yb = y + std::size_t(D) * std::size_t(s.second);
-    double squared = 0.0, closing = 0.0;
-    for (int k = 0; k < D; ++k) {
-      const double between = s.offset[k] + (yb[k] - ya[k]);
-      squared += between * between;
-      closing += between * (yb[velocities + k] - ya[velocities + k]);
-    }
-    gap[j] = squared;
-    rate[j] = closing;
-  }
-  double* force = spring_force_.data();
-  for (std::size_t j = 0; j < springs_.size(); ++j) {
-    const double distance = std::sqrt(gap[j]);
-    gap[j] = distance - spring_reach_[j];
-    rate[j] = rate[j] * inverse_time_scale / distance;
-    const double overlap = gap[j] < 0.0 ? -gap[j] : 0.0;
-    force[j] = hertz_force(spring_stiffness_[j], overlap);
-  }
-  for (const SpringAside& aside : springs_aside_) {  // walls and bi-stiffness curves
-    const auto j = std::size_t(aside.spring);
-    if (springs_[j].second < 0) contact_gap(contacts_[std::size_t(active_[j])], y, gap[j], rate[j]);
-    force[j] = spring_force(aside.spring, -gap[j]);
-  }
-}
-
-// Spring j's force (N) at a compression (m), as the right-hand side forms it.
-double MovingContacts::Group::spring_force(std::int32_t j, double compression) const {
-  const Spring& s = springs_[std::size_t(j)];
-  if (s.aside >= 0) {
-    const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
-    return numerics::hysteresis_force(aside.law, compression, aside.max_compression);
-  }
-  const double overlap = compression > 0.0 ? compression : 0.0;
-  return hertz_force(spring_stiffness_[std::size_t(j)], overlap);
 }
 
 void MovingContacts::Group::handle(const Event& event) {

@@ -110,10 +110,9 @@ class MovingContacts::Group {
     double height = 0.0;           // m, against a wall: the first's anchor and origin above it
     std::int32_t spring = 0;       // its index in springs_
   };
-  // An elastic spring's gap (m) and rate (m/s) at the end of the last segment tracked, and its
-  // largest force (N) and when (s).
+  // An elastic spring's largest force (N), and when (s).
   struct Peak {
-    double gap = 0.0, rate = 0.0, max_force = 0.0, time_of_max = 0.0;
+    double max_force = 0.0, time_of_max = 0.0;
   };
   // A member and a body flying freely, which it takes when they touch.
   struct Watch {
@@ -160,19 +159,13 @@ class MovingContacts::Group {
   bool next_event(double a, double b, Event& event);
   void move_to(double t);
   void handle(const Event& event);
-  // The elastic contacts' largest forces over [t0, t1] of the current step: at t1, or where
-  // their compression ends, placed by the cubic Hermite of the gap from its gaps and rates at
-  // both ends (without a restart: the force is smooth there). Only the reported peak forces
-  // depend on it, not the motion; an evaluation of the dense output at each peak would cost
-  // the whole group's state, which made the cost grow as the group times its contacts (a third
-  // of an FCC 20^3 run). Kept in peaks_, by the springs' order, and folded into the contacts by
-  // move_to.
+  // The elastic contacts' largest forces over [t0, t1] of the current step: the cubic through
+  // their forces at the step's four nodes, which its right-hand side formed (error O(h^4), as
+  // the gap's cubic Hermite formed anew at every step's end, whose gathering and square roots
+  // were 7 to 12 % of a packing's run; the dense output evaluated at each peak made the cost
+  // grow as the group times its contacts). Only the reported peak forces depend on it, not the
+  // motion. Kept in peaks_, by the springs' order, and folded into the contacts by move_to.
   void track_peaks(double t0, double t1);
-  // every spring's gap, rate and force along the state y, into spring_gap_, spring_rate_ and
-  // spring_force_
-  template <int D>
-  void spring_gaps_in(const double* y);
-  double spring_force(std::int32_t spring, double compression) const;
   using State = numerics::internal::RungeKuttaNystrom::State;
   // The group's motion as the Nystrom step reads it: its right-hand side, and the amendment at
   // the contacts that switched within a step.
@@ -208,7 +201,6 @@ class MovingContacts::Group {
   // into one instruction), the accelerations scattered in the springs' order (the same sums as
   // one pass, to the bit).
   std::vector<double> spring_reach_, spring_stiffness_;
-  std::vector<double> spring_gap_, spring_rate_, spring_force_;  // m, m/s, N: of track_peaks
   std::vector<double> gain_;  // members': T / m, a force to the state's w' (moving_contacts.hpp)
   std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
   std::vector<std::int32_t> elastic_;  // of springs_: the elastic, whose peaks are tracked

@@ -55,6 +55,18 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   Weights weights_at(double t) const;
   double component_at(const Weights& w, std::size_t i) const { return interpolate(w, i); }
 
+  // The largest value over [t0, t1] of the last step of a q component's rate g, a force's
+  // magnitude (>= 0), if it exceeds `floor`: the cubic through g at the step's four nodes,
+  // which the step evaluated (error O(h^4) where g is smooth, as the dense output's; no
+  // evaluation of the right-hand side). Where g is zero at some nodes and not at others (a
+  // force that switched on or off within the step, not smooth there) the largest node within
+  // [t0, t1]. Nothing ({floor, NaN}) where no value can exceed the floor: the cubic is at most
+  // its Lebesgue constant times its largest node on [0, 1].
+  struct Peak {
+    double value = 0.0, time = std::numeric_limits<double>::quiet_NaN();
+  };
+  Peak rate_peak(std::size_t i, double t0, double t1, double floor) const;
+
  private:
   friend class EmbeddedPair<RungeKuttaNystrom>;
 
@@ -174,6 +186,69 @@ double RungeKuttaNystrom::attempt(Rhs& rhs, double h) {
     for (std::size_t i = 2 * p; i < n; ++i) velocity_and_error(i);
   }
   return largest;
+}
+
+namespace rkn43 {
+// the cubic through values at the nodes: its monomial coefficients are kCubic times the values
+// (the inverse of the nodes' Vandermonde matrix), and on [0, 1] it is at most kLebesgue times
+// the largest of them in magnitude (max over s of sum |l_i(s)|, 1.5179 at s = 0.469)
+constexpr std::array<std::array<double, 4>, 4> kCubic = [] {
+  std::array<std::array<double, 4>, 4> m{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    // l_i(s) = prod_{k != i} (s - c_k) / (c_i - c_k), expanded
+    std::array<double, 4> p{1.0, 0.0, 0.0, 0.0};
+    double denominator = 1.0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (k == i) continue;
+      for (std::size_t j = 3; j > 0; --j) p[j] = p[j - 1] - nodes[k] * p[j];
+      p[0] = -nodes[k] * p[0];
+      denominator *= nodes[i] - nodes[k];
+    }
+    for (std::size_t j = 0; j < 4; ++j) m[j][i] = p[j] / denominator;
+  }
+  return m;
+}();
+constexpr double kLebesgue = 1.518;
+}  // namespace rkn43
+
+inline RungeKuttaNystrom::Peak RungeKuttaNystrom::rate_peak(std::size_t i, double t0, double t1,
+                                                            double floor) const {
+  using namespace rkn43;
+  const std::array<double, 4> g{dydt_[1 - current_][i], stage_[0][i], stage_[1][i],
+                                dydt_[current_][i]};
+  const double largest = std::max(std::max(g[0], g[1]), std::max(g[2], g[3]));
+  if (kLebesgue * largest <= floor) return {floor};
+  const double h = time_ - previous_time_, s0 = (t0 - previous_time_) / h,
+               s1 = (t1 - previous_time_) / h;
+  Peak peak{floor};
+  auto consider = [&](double s, double value) {
+    if (value > peak.value) peak = {value, previous_time_ + s * h};
+  };
+  if (g[0] * g[1] * g[2] * g[3] == 0.0) {  // switched within the step
+    for (std::size_t k = 0; k < 4; ++k)
+      if (nodes[k] >= s0 && nodes[k] <= s1) consider(nodes[k], g[k]);
+    return peak;
+  }
+  std::array<double, 4> a{};
+  for (std::size_t j = 0; j < 4; ++j)
+    a[j] = kCubic[j][0] * g[0] + kCubic[j][1] * g[1] + kCubic[j][2] * g[2] + kCubic[j][3] * g[3];
+  auto cubic = [&](double s) { return a[0] + s * (a[1] + s * (a[2] + s * a[3])); };
+  consider(s1, s1 == 1.0 ? g[3] : cubic(s1));
+  // its maxima: a1 + 2 a2 s + 3 a3 s^2 = 0 where 2 a2 + 6 a3 s < 0
+  const double A = 3.0 * a[3], B = 2.0 * a[2], C = a[1];
+  const double discriminant = B * B - 4.0 * A * C;
+  if (A == 0.0) {
+    if (B < 0.0) {
+      const double s = -C / B;
+      if (s > s0 && s < s1) consider(s, cubic(s));
+    }
+  } else if (discriminant >= 0.0) {
+    // the roots without cancellation; the maximum is the one where the derivative falls
+    const double q = -0.5 * (B + std::copysign(std::sqrt(discriminant), B));
+    for (const double s : {q / A, q != 0.0 ? C / q : q / A})
+      if (s > s0 && s < s1 && B + 2.0 * A * s < 0.0) consider(s, cubic(s));
+  }
+  return peak;
 }
 
 inline RungeKuttaNystrom::Weights RungeKuttaNystrom::weights_at(double t) const {
