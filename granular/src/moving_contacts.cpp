@@ -73,25 +73,32 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
   }
   for (const auto& [first, second] : closed) contact_id(first, second);
   speed_bound_ = std::sqrt(2.0 * energy / geometry.mass.minCoeff());
-  // the quickest contact: the stiffest pair of the lightest bodies at twice the fastest speed
+  // the quickest contact: the stiffest pair of the lightest bodies at twice the fastest speed,
+  // unloading at once if any law is inelastic
   double stiffness = 0.0;
+  bool elastic = true;
+  auto note_law = [&](const numerics::ContactLaw& law) {
+    stiffness = std::max(stiffness, law.stiffness);
+    elastic = elastic && law.effective_restitution() >= 1.0;
+  };
   for (Eigen::Index b = 0; b < geometry.body_count(); ++b) {
-    stiffness = std::max(stiffness, geometry.bead_law(b, b).stiffness);
-    for (std::size_t w = 0; w < geometry.walls.size(); ++w)
-      stiffness = std::max(stiffness, geometry.wall_law(b, w).stiffness);
+    note_law(geometry.bead_law(b, b));
+    for (std::size_t w = 0; w < geometry.walls.size(); ++w) note_law(geometry.wall_law(b, w));
   }
   const double eta = geometry.shape.exponent, closing = 2.0 * speed_bound_;
   const double overlap = std::pow(
       (1.0 + eta) * 0.5 * geometry.mass.minCoeff() * closing * closing / (2.0 * 2.0 * stiffness),
       1.0 / (1.0 + eta));
   // `overlap` is 2^(-1/(1+eta)) of the pair's largest (its energy halved), and a Hertz contact
-  // lasts 2.94 largest overlaps / closing speed: 3.9 overlap / closing. A window of at most 1.2
-  // of these is under a third of the quickest contact, so that one begun between two groups
-  // within a window is still closed at its end; and no body leaves its list's ball within it.
-  // A window lasts about eight steps of its largest group, within [0.5, 1.2] overlap / closing,
-  // or up to the lists' bound where one group integrates it (next_windows)
+  // lasts 2.94 largest overlaps / closing speed: 3.9 overlap / closing; an inelastic one at
+  // least its loading half, 1.95. A window of at most 0.6 of the quickest contact (2.34 or 1.17
+  // overlap / closing) ends before a contact begun between two groups within it has ended, so
+  // that the groups find it (merge_groups_that_met); and no body leaves its list's ball within
+  // it. A window lasts about eight steps of its largest group, within [0.5 overlap / closing,
+  // that bound], or longer where one group integrates it (next_windows)
   list_bound_ = 0.25 * lists_.skin() / speed_bound_;
-  longest_window_ = std::min(1.2 * overlap / closing, list_bound_);
+  const double quickest_contact = (elastic ? 3.9 : 1.95) * overlap / closing;
+  longest_window_ = std::min(0.6 * quickest_contact, list_bound_);
   shortest_window_ = std::min(0.5 * overlap / closing, list_bound_);
   window_ = extended_window_ = shortest_window_;
   // the gaps are differences of coordinates: their rounding must leave the overlaps digits
@@ -207,16 +214,20 @@ double MovingContacts::next_meeting(double target) const {
 
 // A window restarts its groups and makes them take every body that may meet them within it:
 // long windows restart less, short ones keep the groups small. A window of eight steps of the
-// largest group, within [0.5, 1.2] overlap / closing, does both: 0.5 restarted the FCC front's
-// group at every step at tolerance 1e-4, and 1.2 cost 56 x 56 a third more body steps at 1e-8.
-// (Four steps, as with Dormand-Prince's steps of six forces, made the Nystrom steps of three
-// restart twice as often: FCC 20^3 at 1e-3 took 49 windows in 0.81 s, 28 in 0.57 s with eight;
-// twelve or sixteen changed the time by no more than this machine's noise.)
-// Where one group integrated the last window, the next may take its steps up to 2.5 times
-// longer: no two groups can meet within it if it keeps one (run_window). An FCC 20^3 packing's
-// front group, stepping 6 us at tolerance 1e-4, took two steps a window of 8 us (0.84 s; 0.52 s
-// with these). Longer still, the front outran the halo formed at the window's start, and each
-// body it touched restarted the whole group (36 in one window of 24 us).
+// largest group, within [0.5 overlap / closing, 0.6 of the quickest contact], does both: 0.5
+// restarted the FCC front's group at every step at tolerance 1e-4. (Four steps, as with
+// Dormand-Prince's steps of six forces, made the Nystrom steps of three restart twice as often:
+// FCC 20^3 at 1e-3 took 49 windows in 0.81 s, 28 in 0.57 s with eight. A third of the quickest
+// contact rather than 0.6 made a 32 x 32 packing's windows of its wake's many groups five steps
+// of its largest: at tolerance 3e-5, 117 windows and 435 k body steps, 1.207 G instructions
+// (callgrind, the whole command) against 82, 421 k and 1.081 G, at RMS errors 1.11e-6 and
+// 1.05e-6.)
+// Where one group integrated the last window, the next may take its steps up to 3 overlap /
+// closing: no two groups can meet within it if it keeps one (run_window). An FCC 20^3
+// packing's front group, stepping 6 us at tolerance 1e-4, took two steps a window of 8 us (0.84
+// s; 0.52 s with these). Longer still, the front outran the halo formed at the window's start,
+// and each body it touched restarted the whole group (36 in one window of 24 us; twelve or
+// sixteen steps a window doubled FCC 20^3's body steps at 3e-4, with 511 and 954 restarts).
 std::pair<double, double> MovingContacts::next_windows() const {
   constexpr double kWindowSteps = 8.0;
   const Group* largest = nullptr;
@@ -229,9 +240,9 @@ std::pair<double, double> MovingContacts::next_windows() const {
   if (!largest) return {shortest_window_, shortest_window_};  // a group that starts steps short
   const double steps = kWindowSteps * largest->last_step();
   const double window = std::clamp(steps, shortest_window_, longest_window_);
-  return {window, count == 1 ? std::clamp(steps, shortest_window_,
-                                          std::min(2.5 * longest_window_, list_bound_))
-                             : window};
+  return {window,
+          count == 1 ? std::clamp(steps, shortest_window_, std::min(3.0 * time_scale_, list_bound_))
+                     : window};
 }
 
 MovingContacts::Group& MovingContacts::new_group() {

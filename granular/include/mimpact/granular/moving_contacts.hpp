@@ -84,7 +84,7 @@ struct MovingContactsStats {
 // positions alone), with its own steps. Elastic contacts are smooth forces of the positions
 // and need no event; a group restarts only at its own events (a body it takes, an inelastic
 // contact joining, leaving, or turning to unload), located with dense output (TOMS 748). Groups
-// meet only at the ends of short windows (under a third of the quickest contact's duration): a
+// meet only at the ends of short windows (at most 0.6 of the quickest contact's duration): a
 // window in which two groups touched, or took the same body, is integrated again for them as one.
 class MovingContacts {
  public:
