@@ -646,9 +646,17 @@ void MovingContacts::Group::amend_onsets(const State& start, State& end, double 
   const std::size_t velocities = d * members_.size();
   const double inverse_time_scale = 1.0 / world_.time_scale_;
   double* impulses = end.data() + 2 * velocities;
+  // A spring whose whole impulse over the step, in the state's units, is under a hundredth of
+  // the absolute tolerance changes its beads' velocities by less (their gains T / m are at most
+  // the impulses' T / m_lightest), and its weights can miss no more: left as it is (63 % of
+  // FCC 20^3's switching springs at tolerance 1e-2 and 57 % at 3e-4, 36 % of 32 x 32's at 3e-5:
+  // contacts that barely load).
+  const double negligible = 1e-2 * world_.options_.ode.absolute_tolerance;
   for (std::size_t j : switching) {
     const Spring& s = springs_[j];
-    if (s.second < 0 || s.aside >= 0) continue;
+    if (s.second < 0 || s.aside >= 0 ||
+        std::abs(impulses[j] - start[2 * velocities + j]) < negligible)
+      continue;
     const auto a = std::size_t(s.first), b = std::size_t(s.second);
     Eigen::Vector3d r0 = s.offset, r1 = s.offset, u0 = Eigen::Vector3d::Zero(), u1 = u0;
     for (std::size_t k = 0; k < d; ++k) {

@@ -63,24 +63,33 @@ OnsetQuadrature hertz_onset_quadrature(const Eigen::Vector3d& r0, const Eigen::V
     return f;
   };
   OnsetQuadrature out;
-  // a span where the spheres overlap, each half integrated in u from its end with s = end +-
-  // (half's length) u^2: the force's (s - end)^(3/2) at a touch becomes a smooth u^3, and
-  // Gauss-Legendre takes it to round-off (2 x 8 forces a span)
+  // a span where the spheres overlap, integrated in u from each end where they touch or part,
+  // with s = end +- length u^2: the force's (s - end)^(3/2) there becomes a smooth u^3, and
+  // Gauss-Legendre takes it to round-off; one end such (the other the step's), the whole span
+  // from it (8 forces), both, each half from its own (2 x 8)
   using Gauss = boost::math::quadrature::gauss<double, 8>;
-  auto integrate_span = [&](double first, double last) {
-    const double half = 0.5 * (last - first);
+  auto integrate_from = [&](double end, double length) {  // length < 0: the span ends at `end`
     const auto& x = Gauss::abscissa();
     const auto& w = Gauss::weights();
     for (std::size_t k = 0; k < x.size(); ++k)
       for (const double sign : {-1.0, 1.0}) {
-        // u on [0, 1] (Gauss weight w / 2), ds = 2 half u du
-        const double u = 0.5 * (1.0 + sign * x[k]), weight = w[k] * half * u;
-        for (const double s : {first + half * u * u, last - half * u * u}) {
-          const Force f = force(s);
-          out.impulse += weight * f.vector;
-          out.magnitude += weight * f.magnitude;
-        }
+        // u on [0, 1] (Gauss weight w / 2), ds = 2 |length| u du
+        const double u = 0.5 * (1.0 + sign * x[k]);
+        const Force f = force(end + length * u * u);
+        out.impulse += w[k] * std::abs(length) * u * f.vector;
+        out.magnitude += w[k] * std::abs(length) * u * f.magnitude;
       }
+  };
+  auto integrate_span = [&](double first, double last, bool first_touches, bool last_touches) {
+    if (first_touches && last_touches) {
+      const double half = 0.5 * (last - first);
+      integrate_from(first, half);
+      integrate_from(last, -half);
+    } else if (last_touches) {
+      integrate_from(last, first - last);
+    } else {
+      integrate_from(first, last - first);
+    }
   };
   // the overlap's sign changes, sampled finely enough for the few a step's cubic may have
   constexpr int kSamples = 8;
@@ -97,14 +106,14 @@ OnsetQuadrature hertz_onset_quadrature(const Eigen::Vector3d& r0, const Eigen::V
       if (overlap_here > 0.0) {
         span_start = root;
       } else {
-        integrate_span(span_start, root);
+        integrate_span(span_start, root, span_start > 0.0, true);
         span_start = -1.0;
       }
     }
     before = s;
     overlap_before = overlap_here;
   }
-  if (span_start >= 0.0) integrate_span(span_start, 1.0);
+  if (span_start >= 0.0) integrate_span(span_start, 1.0, span_start > 0.0, false);
   for (std::size_t i = 0; i < Stages; ++i) {
     const Force f = force(nodes[i]);
     out.impulse -= weights[i] * f.vector;
