@@ -57,11 +57,12 @@ def parse(out):
     return data["context"], results, sorted(set(skipped))
 
 
-def time_at(rows, target):
-    """The time (s) a code needs for an RMS error of `target`, and whether it is a bound:
-    interpolated log-log between the two runs that bracket it; when even the code's cheapest
-    run is more accurate, that run's time bounds it (True); None when no run reaches it."""
-    points = sorted((r["rms"], r["seconds"]) for r in rows if r["rms"] > 0)
+def time_at(rows, target, field="seconds"):
+    """The time (s) a code needs for an RMS error of `target` (or another `field` of its runs),
+    and whether it is a bound: interpolated log-log between the two runs that bracket it; when
+    even the code's cheapest run is more accurate, that run's time bounds it (True); None when
+    no run reaches it."""
+    points = sorted((r["rms"], r[field]) for r in rows if r["rms"] > 0 and r.get(field))
     if not points:
         return None, False
     for (e1, t1), (e2, t2) in zip(points, points[1:]):
@@ -137,6 +138,38 @@ def cost_table(results):
                      " | ".join(cells) + " | " +
                      (f"{steps['body_steps'] / (steps['contacts'] * steps['duration'] * 1e3):.0f}"
                       if steps else "—") + " |")
+    return lines + [""] + fixed_accuracy_table(results)
+
+
+def fixed_accuracy_table(results):
+    """Item c as it reads, at a fixed accuracy: the time and the body steps per contact and
+    millisecond that each scene needs for an RMS error, interpolated between its runs as the
+    times above (where a scene's loosest run is already more accurate, '≤' that run's), and
+    LAMMPS's time per contact and millisecond for the same error beside them."""
+    targets = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
+    lines = ["At a fixed accuracy: mimpact's time (µs) and its bodies' steps per contact and "
+             "millisecond, then LAMMPS's time (µs) per contact and millisecond, for an RMS "
+             "error of the velocities, each interpolated between the runs that bracket it. "
+             "A larger packing runs longer and its wake rattles more: the same local error "
+             "grows into a larger final one, for both codes alike.", "",
+             "| scene | " + " | ".join(f"RMS {t:g}" for t in targets) + " |",
+             "|---|" + "---|" * len(targets)]
+    for scene, codes in results.items():
+        rows = [r for r in codes.get("Mimpact", []) if r.get("contacts")]
+        if not rows:
+            continue
+        scale = 1.0 / (rows[0]["contacts"] * rows[0]["duration"] * 1e3)
+        cells = []
+        for target in targets:
+            time, time_bound = time_at(rows, target)
+            steps, _ = time_at(rows, target, "body_steps")
+            lammps, lammps_bound = time_at(codes.get("Lammps", []), target)
+            cell = "—" if time is None or steps is None else \
+                ("≤ " if time_bound else "") + f"{time * 1e6 * scale:.0f} / {steps * scale:.0f}"
+            cell += " / " + ("—" if lammps is None else
+                             ("≤ " if lammps_bound else "") + f"{lammps * 1e6 * scale:.0f}")
+            cells.append(cell)
+        lines.append(f"| {scene} | " + " | ".join(cells) + " |")
     return lines + [""]
 
 

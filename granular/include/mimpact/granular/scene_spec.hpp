@@ -95,7 +95,7 @@ struct CompliantSpec {
   // from the law rather than an integration error. The moving geometry resolves overlaps down to
   // (1e-2 tolerance)^(1 / eta) of the impact's (1 % at 1e-1) and takes up to 1e-1: its Nystrom
   // pair's error estimate is third order and errs on the safe side (FCC 20^3 within RMS 5.6e-5
-  // of the converged velocities at 1e-2, 5.5e-4 at 1e-1; hexagonal 32^2 4.9e-4 and 3.3e-3).
+  // of the converged velocities at 1e-2, 5.6e-4 at 1e-1; hexagonal 32^2 4.7e-4 and 3.3e-3).
   static constexpr double kLoosestFrozenTolerance = 1e-4;
 
   template <class Self, class Visit>
