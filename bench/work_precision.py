@@ -212,6 +212,44 @@ time at a given accuracy grows faster than the contacts reached.
 """
 
 
+def packing_peers_section(peers_page):
+    """Packings against LAMMPS, at the two RMS errors of issue 24, from the page that
+    bench/packing_work_precision.py writes (a separate study: twenty minutes with LAMMPS);
+    empty before it has run."""
+    if not peers_page.exists():
+        return ""
+    targets = ("0.0001", "1e-06")
+    found, scene = {}, None
+    for line in peers_page.read_text().splitlines():
+        if line.startswith("## "):
+            scene = line[3:]
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if scene and len(cells) == 4 and cells[0] in targets:
+            found.setdefault(scene, {})[cells[0]] = cells[1:]
+    rows = ["| scene | RMS 1e-4: mimpact (s) | LAMMPS (s) | LAMMPS / mimpact | "
+            "RMS 1e-6: mimpact (s) | LAMMPS (s) | LAMMPS / mimpact |",
+            "|---|---|---|---|---|---|---|"]
+    for scene, at in found.items():
+        rows.append(f"| {scene} | " + " | ".join(" | ".join(at.get(t, ["—"] * 3)) for t in targets)
+                    + " |")
+    return f"""
+## Packings against LAMMPS
+
+The packings as they really move (the compliant contacts in the moving geometry, docs/model.md
+section 17) and LAMMPS (Debian's `lammps`, the same Hertz law, velocity Verlet) on the same
+beads struck at 1 m/s, in one benchmark run (`/usr/bin/python3 bench/packing_work_precision.py
+--bench build/release/bench/bench_packing_peers --scenes 0,1,2,3,4 --install-lammps`, which writes
+[performance_packings.md](performance_packings.md) with every run, its figure and the cost per
+contact that carried force): each code's time for an RMS error of the velocities at the end
+time, against mimpact at tolerance 1e-10, interpolated between its runs. This machine's speed
+drifts by up to half again over minutes and the study reads each point once; docs/model.md
+section 17 gives the points around 1e-6 run five times each.
+
+{chr(10).join(rows)}
+"""
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--bench", help="the bench_work_precision executable")
@@ -333,7 +371,8 @@ right to 1e-6 (docs/model.md §10).
 ![chain length](performance/chain_length.png)
 
 {chr(10).join(length_table)}
-""" + packing_section(ROOT / "docs" / "results" / "packings" / "scale.json")
+""" + packing_section(ROOT / "docs" / "results" / "packings" / "scale.json") + \
+        packing_peers_section(ROOT / "docs" / "performance_packings.md")
     (out / "performance.md").write_text(page)
     print(f"wrote {out / 'performance.md'}", file=sys.stderr)
 
