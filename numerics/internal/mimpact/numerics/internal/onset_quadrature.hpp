@@ -18,9 +18,9 @@ namespace mimpact::numerics::internal {
 //
 // This integrates that one force again, along the separation of the two spheres over the step
 // modelled as the cubic Hermite of its values and rates at the step's ends (error O(h^4)),
-// where the spheres overlap (the overlap's ends found by TOMS 748, each half of a span
-// integrated by Gauss-Legendre after a change of variable that makes the touch's
-// (s - s_touch)^(3/2) smooth), and gives what the step's weights missed:
+// where the spheres overlap (the overlap's ends found by TOMS 748, a span integrated by
+// Gauss-Legendre from its touching end, or each half from its own, after a change of variable
+// that makes the touch's (s - s_touch)^(3/2) smooth), and gives what the step's weights missed:
 //   integral over the step of F n dt  -  h sum_i b_i F(t0 + c_i h) n(t0 + c_i h),
 // both along the same model, so that the model's own error largely cancels and the difference
 // vanishes where the force is smooth. Added to the two bodies' velocities, equal and opposite
