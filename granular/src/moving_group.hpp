@@ -29,7 +29,9 @@ struct MovingContacts::Body {
   double inverse_mass = 0.0;
   std::int32_t owner = -1;  // the group integrating it in this window, or -1: flying freely
   std::int32_t slot = -1;   // its place among its group's members
-  double step_hint = 0.0;   // s: the last step its group took, where the next group starts
+  // s: the last step its group took, and its controller's memory (the error ratio of that
+  // step), where the next group starts
+  double step_hint = 0.0, error_hint = 0.0;
   // the group that committed it, and in which window: the group of the window before that
   // committed most of a new group's members goes on as that group (Group::carry_on)
   std::int64_t last_window = -1;
@@ -140,7 +142,12 @@ class MovingContacts::Group {
   // the walls
   void pair_new_members();
   void restart(double t);
-  double first_step() const;  // s, of the integration restarted
+  // The integration restarted: its first step (s), and its controller's memory
+  // (RungeKuttaNystrom::restart's last_error).
+  struct StepStart {
+    double step = 0.0, last_error = 0.0;
+  };
+  StepStart step_start() const;
   void rhs(const double* y, double* dydt);
   template <int D>
   void rhs_in(const double* y, double* dydt);

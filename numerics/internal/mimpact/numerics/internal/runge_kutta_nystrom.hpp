@@ -36,15 +36,21 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   // to amend, with the q components whose rates switched on or off within the step (zero at
   // some of its stages, not at others): a contact force that began or ended there, whose
   // quadrature the rhs may correct (onset_quadrature.hpp). The error estimate is the
-  // unamended pair's.
+  // unamended pair's. `last_error` is the step-size controller's memory, the error ratio of
+  // the last step accepted (after_acceptance): kNoLastError where the motion starts afresh, or
+  // last_error() where it goes on.
+  static constexpr double kNoLastError = 1e-4;  // Hairer's start
   void restart(const State& y, double t, double first_step, std::size_t positions,
-               double velocity_scale) {
+               double velocity_scale, double last_error = kNoLastError) {
     start(y, t, first_step);
     for (State& k : stage_) k.resize(y.size());
     probe_ = y;
     positions_ = positions;
     kappa_ = velocity_scale;
+    last_error_ = last_error;
+    rejected_ = false;
   }
+  double last_error() const { return last_error_; }
 
   // The Hermite bases at a time of the last step, for component_at.
   struct Weights {
@@ -76,7 +82,7 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   // An accepted one changes by Gustafsson's proportional-integral rule (ACM TOMS 17, 1991), as
   // Hairer's DOPRI5 with beta = 0.08 (Hairer, Norsett & Wanner, Solving ODEs I, section II.4): 0.9
   // err^(-(1/4 - 0.75 beta)) err_last^beta within [1/5, 5], and not up right after a rejection;
-  // the last error is carried across restarts, where a group goes on with the same motion. 10 to
+  // the last error is carried across restarts (restart's last_error). 10 to
   // 25 % of a packing's attempts were rejected under the rule without its integral part (keep
   // the step for err in [1/2, 1], else 0.9 err^(-1/4)); this one takes 0.81 to 1.01 of the work
   // at equal accuracy (docs/model.md, section 17). max_step bounds every step.
@@ -105,8 +111,8 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   std::vector<std::size_t> switching_;  // of the q components, for amend (its first few)
   std::size_t positions_ = 0;
   double kappa_ = 1.0;
-  double last_error_ = 1e-4;  // of the last step accepted (Hairer's start before the first)
-  bool rejected_ = false;     // the last attempt was
+  double last_error_ = kNoLastError;  // of the last step accepted
+  bool rejected_ = false;             // the last attempt was
 };
 
 // RKN4(3)4FM: nodes c, stage weights a (for x''), the fourth-order weights b (x) and bp (w, q),
