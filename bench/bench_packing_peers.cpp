@@ -13,7 +13,9 @@
 // When /usr/bin/lmp is absent the LAMMPS runs are skipped with a message.
 // bench/packing_work_precision.py runs this program and writes docs/performance_packings.md.
 //
-// Names: BM_PackingMimpact/<scene>/<k> at tolerance 10^-k, BM_PackingLammps/<scene>/<h> at step
+// Names: BM_PackingMimpact/<scene>/<tolerance> (1e-1, 3e-2, 1e-2, ... 1e-9: two a decade, so
+// that an error between two runs is interpolated over a third of a decade of tolerance, as
+// LAMMPS's over its steps a factor 2 apart), BM_PackingLammps/<scene>/<h> at step
 // kLargestStep / 2^h; scenes are numbered as in kScenes.
 #include <benchmark/benchmark.h>
 
@@ -124,8 +126,7 @@ double least_time(Timed&& run) {
   return least;
 }
 
-void BM_PackingMimpact(benchmark::State& state, int scene, int exponent) {
-  const double tolerance = std::pow(10.0, -double(exponent));
+void BM_PackingMimpact(benchmark::State& state, int scene, double tolerance) {
   const Run& truth = reference(scene);
   Run run;
   for (auto _ : state)
@@ -227,27 +228,30 @@ void BM_PackingLammps(benchmark::State& state, int scene, int halvings) {
 }  // namespace
 
 // The two codes' runs alternate, coarse to fine, so that a noisy machine slows both alike:
-// mimpact at tolerance 1e-1 (its loosest) ... 1e-9, LAMMPS at kLargestStep / 2^0 ... 2^7.
+// mimpact at tolerance 1e-1 (its loosest), 3e-2, ... 1e-9, LAMMPS at kLargestStep / 2^0 ... 2^7.
 int main(int argc, char** argv) {
+  // names built by appending: GCC 12 warns on "literal" + std::string (-Wrestrict)
+  auto name = [](const char* code, int scene, const std::string& knob) {
+    std::string text = code;
+    text += "/";
+    text += std::to_string(scene);
+    text += "/";
+    text += knob;
+    return text;
+  };
   for (int scene = 0; scene < int(std::size(kScenes)); ++scene)
-    for (int level = 0; level <= 8; ++level) {
-      // names built by appending: GCC 12 warns on "literal" + std::string (-Wrestrict)
-      auto name = [&](const char* code, int knob) {
-        std::string text = code;
-        text += "/";
-        text += std::to_string(scene);
-        text += "/";
-        text += std::to_string(knob);
-        return text;
-      };
-      benchmark::RegisterBenchmark(name("BM_PackingMimpact", level + 1).c_str(), BM_PackingMimpact,
-                                   scene, level + 1)
+    for (int level = 0; level <= 16; ++level) {  // tolerance 1e-1 ... 1e-9, two a decade
+      const int exponent = 1 + (level + 1) / 2;
+      const std::string tolerance = (level % 2 ? "3e-" : "1e-") + std::to_string(exponent);
+      benchmark::RegisterBenchmark(name("BM_PackingMimpact", scene, tolerance).c_str(),
+                                   BM_PackingMimpact, scene, std::stod(tolerance))
           ->Iterations(1)
           ->UseManualTime()
           ->Unit(benchmark::kSecond);
-      if (level == 8) continue;  // LAMMPS's finest step is 2^7 below its largest
-      benchmark::RegisterBenchmark(name("BM_PackingLammps", level).c_str(), BM_PackingLammps, scene,
-                                   level)
+      if (level % 2 || level / 2 > 7) continue;  // LAMMPS's finest step is 2^7 below its largest
+      benchmark::RegisterBenchmark(
+          name("BM_PackingLammps", scene, std::to_string(level / 2)).c_str(), BM_PackingLammps,
+          scene, level / 2)
           ->Iterations(1)
           ->UseManualTime()
           ->Unit(benchmark::kSecond);
