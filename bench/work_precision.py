@@ -242,7 +242,8 @@ beads struck at 1 m/s, in one benchmark run (`/usr/bin/python3 bench/packing_wor
 --bench build/release/bench/bench_packing_peers --scenes 0,1,2,3,4 --install-lammps`, which writes
 [performance_packings.md](performance_packings.md) with every run, its figure and the cost per
 contact that carried force): each code's time for an RMS error of the velocities at the end
-time, against mimpact at tolerance 1e-10, interpolated between its runs. This machine's speed
+time, against mimpact at tolerance 1e-10, interpolated between its runs (mimpact's at two
+tolerances a decade, LAMMPS's at steps a factor 2 apart). This machine's speed
 drifts by up to half again over minutes and the study reads each point once; docs/model.md
 section 17 gives the points around 1e-6 run five times each.
 
