@@ -35,6 +35,7 @@ struct Body {
   double radius;
   granular::Material material;
   Vector velocity = Vector::Zero(centre.size());
+  std::size_t line = 0;  // of a listed bead, in its file (for messages); 0: not listed
 };
 
 // the first `dimension` of these components
@@ -181,8 +182,10 @@ std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::
       fail(number, std::to_string(count) + " columns; allowed: " + line_of(names, columns));
     const double radius = values[dimension];
     if (!(radius > 0.0)) fail(number, invalid_value_message("radius", radius, "> 0 (m)"));
-    beads.push_back(
-        {vector_of({values[0], values[1], values[2]}, dimension), radius, list.material});
+    beads.push_back({.centre = vector_of({values[0], values[1], values[2]}, dimension),
+                     .radius = radius,
+                     .material = list.material,
+                     .line = number});
     if (beads.size() % 100'000 == 0)
       granular::check_memory(double(beads.size()) * bead_bytes(dimension),
                              "beads.file (" + std::to_string(beads.size()) + " beads so far)",
@@ -248,6 +251,13 @@ class PackingBuilder {
     model_.laws.push_back(scene_.contact.law(hertz_stiffness));
   }
 
+  // "FILE lines M and N: " where two beads come from a bead list, as its other messages
+  std::string where_listed(const Body& a, const Body& b) const {
+    if (a.line == 0 || b.line == 0) return "";
+    return bead_file(*scene_.beads, scene_.directory).string() + " lines " +
+           std::to_string(a.line) + " and " + std::to_string(b.line) + ": ";
+  }
+
   // Two bodies touch within kTouching of their radii: a contact at the distance of their
   // centres; closer, they overlap.
   void touch(Eigen::Index i, Eigen::Index j, const Vector& centre_i) {
@@ -257,8 +267,9 @@ class PackingBuilder {
     const double distance = between.norm(), reach = a.radius + b.radius;
     if (distance > reach * (1.0 + kTouching)) return;
     if (distance < reach * (1.0 - kTouching))
-      throw InvalidInput(bead_name(model_, i) + " and " + bead_name(model_, j) + " overlap by " +
-                         to_text(reach - distance) + " m (" + to_text(1.0 - distance / reach) +
+      throw InvalidInput(where_listed(a, b) + bead_name(model_, i) + " and " +
+                         bead_name(model_, j) + " overlap by " + to_text(reach - distance) +
+                         " m (" + to_text(1.0 - distance / reach) +
                          " of the sum of their radii); allowed: touching within " +
                          to_text(kTouching) + " of it, or apart");
     add_contact({.first = i, .second = j, .normal = between / distance, .rest = distance},

@@ -91,5 +91,5 @@ def test_three_dimensional_packings_and_their_bad_input(tmp_path):
     listed = {"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
               "beads": {"file": "beads.csv"},
               "strikers": [{"target": [0], "radius": 0.005, "velocity": [1, 0, 0]}]}
-    with pytest.raises(ValueError, match=r"bead 0 and bead 1 overlap by 0\.001"):
+    with pytest.raises(ValueError, match=r"lines 2 and 3: bead 0 and bead 1 overlap by 0\.001"):
         mimpact.run_packing(listed, data_dir=tmp_path)

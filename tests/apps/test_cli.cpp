@@ -618,7 +618,7 @@ TEST(PackingCommand, ThreeDimensionalBadInputIsNamedAndWritesNothing) {
        "walls[0].normal = [0, 0, 0] is invalid; allowed: a normal of length > 0"},
       {R"("beads": {"file": "beads.csv"},
           "strikers": [{"target": [0], "radius": 0.005, "velocity": [1, 0, 0]}])",
-       "bead 0 and bead 1 overlap by 0.001"}};
+       "beads.csv lines 2 and 3: bead 0 and bead 1 overlap by 0.001"}};
   for (const auto& [body, message] : kCases) {
     std::ofstream(dir / "scene.json") << "{" << steel << ", " << body << "}";
     const CliRun run =

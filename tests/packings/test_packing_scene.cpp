@@ -76,7 +76,7 @@ TEST(PackingScene, BadInputGetsOneClearError) {
       R"("strikers": [{"target": [0], "radius": 0.005, "velocity": [1, 0]}])";
   EXPECT_NE(
       error_of("{" + kSteel + R"(, "beads": {"file": "mimpact_overlap.csv"}, )" + striker + "}")
-          .find("bead 0 and bead 1 overlap by 0.001"),
+          .find("mimpact_overlap.csv lines 2 and 3: bead 0 and bead 1 overlap by 0.001"),
       std::string::npos);
   EXPECT_NE(error_of("{" + kSteel + R"(, "beads": {"file": "mimpact_empty.csv"}, )" + striker + "}")
                 .find("the bead list is empty"),
