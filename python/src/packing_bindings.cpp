@@ -23,12 +23,12 @@ namespace {
 // What run_packing() returns: the vectors of summary.json as arrays, the series and frames.
 // Per body a row of `dimension` components.
 struct PackingResult : SceneResult {
-  Eigen::MatrixXd post_impact_velocities;  // m/s, per body (beads, then strikers)
-  Eigen::MatrixXd body_impulses;           // N s, per body
-  Eigen::MatrixXd positions;               // m, the centres, per body
-  Eigen::VectorXd radii;                   // m, per body
-  Eigen::MatrixX2i contact_bodies;         // the two bodies of each contact (-1: a wall)
-  double contacts_per_step = 0.0;
+  Eigen::MatrixXd post_impact_velocities;   // m/s, per body (beads, then strikers)
+  Eigen::MatrixXd body_impulses;            // N s, per body
+  Eigen::MatrixXd positions;                // m, the centres, per body
+  Eigen::VectorXd radii;                    // m, per body
+  Eigen::MatrixX2i contact_bodies;          // the two bodies of each contact (-1: a wall)
+  std::optional<double> contacts_per_step;  // the LZB integrators'; None for the compliant
   // dict: time, forces (frames x contacts), velocities, and in the moving geometry positions
   py::object frames = py::none();
 };
@@ -100,7 +100,8 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
     const packings::PackingContact& contact = model.contacts[std::size_t(c)];
     result.contact_bodies.row(c) << int(contact.first), int(contact.second);
   }
-  result.contacts_per_step = summary["contacts_per_step"].get<double>();
+  if (!summary["contacts_per_step"].is_null())
+    result.contacts_per_step = summary["contacts_per_step"].get<double>();
   if (!run.frames.empty())
     result.frames = frames_dict(run.frames, model.body_count(), model.dimension);
   return result;
@@ -124,7 +125,8 @@ void bind_packings(py::module_& module) {
       .def_readonly("contact_bodies", &PackingResult::contact_bodies,
                     "contacts x 2: the bodies of each contact; -1 in the second for a wall")
       .def_readonly("contacts_per_step", &PackingResult::contacts_per_step,
-                    "contacts integrated per step on average (LZB): the work")
+                    "contacts integrated per step on average: the LZB integrators' work; None "
+                    "for the compliant contacts (see the summary's moving_geometry)")
       .def_readonly("frames", &PackingResult::frames,
                     "None, or dict of 'time', 'forces' (frames x contacts), 'velocities' "
                     "(frames x bodies x dimension)")

@@ -54,6 +54,13 @@ def test_a_dict_scene_and_delta_p(tmp_path):
     coarse_error = abs(coarse.post_impact_velocities - adaptive.post_impact_velocities).max()
     fine_error = abs(fine.post_impact_velocities - adaptive.post_impact_velocities).max()
     assert 3.0 < coarse_error / fine_error < 5.0
+    # the work of a step: the LZB integrators count contacts, the compliant contacts bodies
+    assert coarse.contacts_per_step > 0.0
+    scene["method"] = "compliant"
+    scene.pop("impact")
+    compliant = mimpact.run_packing(scene)
+    assert compliant.contacts_per_step is None
+    assert compliant.summary["moving_geometry"]["body_steps"] > 0
 
 
 def test_bad_input_is_a_value_error_naming_the_field():
