@@ -376,6 +376,7 @@ void MovingContacts::form_groups(double end) {
       pairs.emplace_back(a.slot, b.slot);
     }
   }
+  link_halo_meetings(window, loaded_count, linked, pairs);
   for (std::int32_t id : loaded_ids_) {
     const MovingContact& c = contacts_[std::size_t(id)];
     if (!c.wall())
@@ -394,6 +395,38 @@ void MovingContacts::form_groups(double end) {
       groups_.back()->carry_on(std::int32_t(groups_.size() - 1), time_, members[c]);
     } else {
       new_group().begin(time_, members[c]);
+    }
+  }
+}
+
+// The halo's own meetings: a body of the halo that may meet, flying freely, another body
+// flying freely within twice the window (the halo's margin for a body the group speeds up)
+// takes it too, and so on; as the free bodies' meetings are found (free_meetings), at the
+// joining overlap. Without them a wake body of the halo, set moving by its group, touched its
+// free neighbour and restarted the whole group to take it: a 100 x 100 packing's front group
+// of 8 000 bodies restarted 680 times at tolerance 1e-4, 3.3 M bodies restarted against 8.3 M
+// body steps (22 times on 32 x 32, 13 k against 277 k); 15 times with them, and 5.0 M body
+// steps. Pairs at rest or parting (touching beads ahead of a front) are not meetings.
+void MovingContacts::link_halo_meetings(double window, std::size_t loaded_count,
+                                        std::vector<std::int32_t>& linked,
+                                        std::vector<std::pair<std::int32_t, std::int32_t>>& pairs) {
+  const double resolution = options_.overlap_resolution;
+  for (std::size_t l = loaded_count; l < linked.size(); ++l) {  // linked grows as bodies join
+    const std::int32_t i = linked[l];
+    const Body& a = bodies_[std::size_t(i)];
+    const Eigen::Vector3d x = a.position_at(time_);
+    for (std::int32_t k : lists_.bodies_near(i)) {
+      Body& b = bodies_[std::size_t(k)];
+      if (b.slot >= 0 && std::size_t(b.slot) < loaded_count) continue;  // paired by its reach
+      const double t =
+          meeting_time(b.position_at(time_) - x, b.v - a.v,
+                       geometry_.radius(i) + geometry_.radius(k) - resolution, 2.0 * window);
+      if (!std::isfinite(t)) continue;
+      if (b.slot < 0) {
+        b.slot = std::int32_t(linked.size());
+        linked.push_back(k);
+      }
+      pairs.emplace_back(a.slot, b.slot);
     }
   }
 }

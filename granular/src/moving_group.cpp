@@ -643,6 +643,7 @@ void MovingContacts::Group::handle(const Event& event) {
     }
   }
   ++world_.stats_.group_restarts;
+  world_.stats_.member_restarts += std::int64_t(members_.size());
   restart(time_);
 }
 

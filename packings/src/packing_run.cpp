@@ -129,6 +129,7 @@ nlohmann::ordered_json moving_json(const granular::MovingContactsStats& work) {
           {"group_steps", work.steps},
           {"windows", work.windows},
           {"group_restarts", work.group_restarts},
+          {"body_restarts", work.member_restarts},
           {"groups_integrated_again", work.redone_groups},
           {"largest_group", work.largest_group},
           {"most_bodies_in_motion", work.most_bodies_in_motion},

@@ -66,6 +66,7 @@ struct MovingContactsStats {
   std::int64_t extended_windows = 0;  // those one group integrated beyond a window of two groups
   std::int64_t redone_groups = 0;     // groups integrated again over a window (they met another)
   std::int64_t group_restarts = 0;    // restarts of a group's integration at its own events
+  std::int64_t member_restarts = 0;   // the bodies those restarts carried
   std::int64_t most_bodies_in_motion = 0;
   std::int64_t largest_group = 0;
   std::int64_t list_refreshes = 0;
@@ -127,6 +128,11 @@ class MovingContacts {
   void run_window(double end, double extended);
   void refresh_lists(double end);
   void form_groups(double end);
+  // form_groups' closure of its halo: bodies flying freely that its bodies meet within the
+  // window, appended to `linked` (slots numbered as there) and paired
+  void link_halo_meetings(double window, std::size_t loaded_count,
+                          std::vector<std::int32_t>& linked,
+                          std::vector<std::pair<std::int32_t, std::int32_t>>& pairs);
   // the meetings of bodies flying freely before `end`, by time
   std::vector<Meeting> free_meetings(double end) const;
   void form_collision_groups(const std::vector<Meeting>& meetings);
