@@ -1,6 +1,7 @@
 #include "mimpact/numerics/lzb_adaptive_integrator.hpp"
 
 #include <algorithm>
+#include <boost/math/quadrature/gauss.hpp>
 #include <cfloat>
 #include <cmath>
 #include <string>
@@ -38,6 +39,14 @@ constexpr int kSamplesPerStep = 2;
 // suite's largest is 0.93 times it, at 1e-12).
 constexpr double kLocalErrorShare = 1.0 / 100.0;
 
+// An elastic impact keeps its switches within its steps while this many contacts hold energy or
+// approach, and locates them again once fewer than kLeaveWithinSteps do. Each located switch
+// ends a step of all the members, and the switches grow with the members: a packing's impact
+// then costs as the square of its contacts. Kept within, the switches cost a step no more than
+// its smooth parts, and the steps are those the non-smooth forces' error allows: longer where
+// many contacts switch, shorter where few do (measured below, docs/model.md section 10).
+constexpr std::size_t kEnterWithinSteps = 128, kLeaveWithinSteps = 64;
+
 // The watched quantities at one time: the members' velocities and the active ones' delta.
 struct Watched {
   std::vector<double> velocity, delta;
@@ -65,6 +74,7 @@ class LzbAdaptiveIntegrator::Impact {
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
                const LawTable& laws, const LzbAdaptiveOptions& options);
   void begin_segment();
+  void size_segment();
   // u of every member for the ODE state y (the increments of P applied through H's columns)
   void member_velocities(const State& y, std::vector<double>& velocity) const;
   void derivative(const State& y, State& dydt);
@@ -75,6 +85,22 @@ class LzbAdaptiveIntegrator::Impact {
   // the same for one member at the state y: its velocity from its column of H alone
   double member_velocity(const State& y, std::size_t member) const;
   double member_value(std::size_t member, int kind, const State& y) const;
+  // u_j of one member from its column of H alone (H is symmetric: column j holds row j, the
+  // contacts whose impulses move u_j); `impulse(a)` gives active member a's scaled P increment
+  template <class Impulse>
+  double column_velocity(std::size_t member, Impulse&& impulse) const {
+    const Index j = members_[member];
+    double velocity = velocity_[j];
+    const int* start = H_->outerIndexPtr();
+    const int* row = H_->innerIndexPtr();
+    const double* value = H_->valuePtr();
+    for (int k = start[j]; k < start[j + 1]; ++k) {
+      const int other = member_of_[row[k]];
+      if (other >= 0 && std::size_t(other) < active_)
+        velocity += value[k] * impulse(std::size_t(other)) * impulse_scale_[row[k]];
+    }
+    return velocity;
+  }
   void end_segment(const State& y);
   void account_work(const State& y);
   void apply(const std::vector<internal::Crossing>& crossings, double t);
@@ -82,6 +108,21 @@ class LzbAdaptiveIntegrator::Impact {
   void sample_until(double t, ImpactObserver& observer);
   void notify(double t, const State* y, ImpactObserver& observer);
   void finish(double t, LzbResult& result);
+
+  // An elastic impact (every e = 1) keeps its switches within the steps (docs/model.md,
+  // section 10): its members, the contacts holding energy or approaching and two rings of their
+  // neighbours, all carry delta_j and P_j; a contact's delta_j runs below 0 once it separates,
+  // its force K max(delta_j, 0)^eta switching off by itself, and where it approaches again
+  // (u_j turning negative, a "closing" turn) it is set back to the clamp, delta_j - delta_j(turn),
+  // its impulse integrated again from there.
+  void begin_elastic_segment();
+  void locate_turns(double t0, double t1, const Watched& before, const Watched& after);
+  double member_velocity_at(const internal::DenseOutput::Weights& w, std::size_t member) const;
+  // the peaks and closings of the step [t0, t1] just taken; true if a closing changed the state
+  // (then y_settled_ holds it)
+  bool settle_turns(double t0, double t1);
+  // a contact of the outer ring holds energy or approaches: its neighbours must join
+  bool outgrown(const State& y) const;
 
   double delta_of(std::size_t member, const State& y) const {
     return std::max(y[member], 0.0) * delta_scale_[members_[member]];
@@ -118,7 +159,19 @@ class LzbAdaptiveIntegrator::Impact {
   std::vector<double> accounted_impulse_, accounted_velocity_;
   Watched before_, after_;
   std::vector<Index> previous_members_;  // begin_segment's buffer
-  ImpactSampler* sampler_ = nullptr;     // the integrator's, for the impact being integrated
+  // within the steps (elastic impacts)
+  bool elastic_ = false;             // every contact's e = 1
+  bool within_steps_ = false;        // the current segment keeps its switches within its steps
+  std::vector<unsigned char> ring_;  // per member: 0 holding energy or approaching, 1, 2 around
+  struct Turn {
+    std::size_t member;
+    double time;
+    bool closing;  // u_j turned negative (else positive: a peak of delta_j)
+  };
+  std::vector<Turn> turns_;
+  State y_settled_;                   // the state at a step's end with its closings settled
+  std::vector<Index> pending_;        // non-members a member's impulse set approaching
+  ImpactSampler* sampler_ = nullptr;  // the integrator's, for the impact being integrated
 };
 
 void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
@@ -168,6 +221,10 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
   for (std::size_t j = 0; j < m; ++j)
     if (velocity_[j] < -velocity_tolerance_) phase_[j] = Phase::compression;
   members_.clear();
+  pending_.clear();
+  elastic_ = m > 0;
+  for (std::size_t j = 0; j < m; ++j) elastic_ = elastic_ && laws[j].restitution == 1.0;
+  within_steps_ = false;
   steps_ = contact_steps_ = 0;
   segment_start_ = last_sample_ = closed_impulse_sum_ = 0.0;
 }
@@ -175,10 +232,25 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
 // The members of the segment that starts now: the contacts holding energy, then the open
 // contacts their forces reach through H. The ODE state starts at [delta / scale, 0].
 void LzbAdaptiveIntegrator::Impact::begin_segment() {
+  if (elastic_) {
+    std::size_t core = 0;
+    auto count = [&](Index j) { core += delta_[j] > 0.0 || velocity_[j] < -velocity_tolerance_; };
+    if (members_.empty())
+      for (Index j = 0; j < Index(phase_.size()); ++j) count(j);
+    for (Index j : members_) count(j);
+    core += pending_.size();
+    within_steps_ = core >= (within_steps_ ? kLeaveWithinSteps : kEnterWithinSteps);
+  }
+  if (within_steps_) {
+    begin_elastic_segment();
+    return;
+  }
   for (Index j : members_) member_of_[j] = -1;
   std::vector<Index>& previous = previous_members_;
   previous.swap(members_);
   members_.clear();
+  previous.insert(previous.end(), pending_.begin(), pending_.end());
+  pending_.clear();
   // the active contacts were members already (a contact becomes active only by a switch at a
   // member), so the new active set is found among the previous members, in their order
   for (Index j : previous)
@@ -201,6 +273,51 @@ void LzbAdaptiveIntegrator::Impact::begin_segment() {
         member_of_[row[k]] = int(members_.size());
         members_.push_back(row[k]);
       }
+  size_segment();
+}
+
+// The members of an elastic segment: the contacts holding energy or approaching faster than
+// tolerance * V, then the ring of their neighbours through H, then the ring of those: a
+// contact of the first ring may load within a step, and its impulse then moves only members.
+void LzbAdaptiveIntegrator::Impact::begin_elastic_segment() {
+  for (Index j : members_) member_of_[j] = -1;
+  std::vector<Index>& previous = previous_members_;
+  previous.swap(members_);
+  members_.clear();
+  ring_.clear();
+  auto take = [&](Index j, unsigned char ring) {
+    member_of_[j] = int(members_.size());
+    members_.push_back(j);
+    ring_.push_back(ring);
+  };
+  auto core = [&](Index j) {
+    return member_of_[j] < 0 && (delta_[j] > 0.0 || velocity_[j] < -velocity_tolerance_);
+  };
+  if (previous.empty() && pending_.empty()) {  // the first segment
+    for (Index j = 0; j < Index(phase_.size()); ++j)
+      if (core(j)) take(j, 0);
+  }
+  for (Index j : previous)
+    if (core(j)) take(j, 0);
+  for (Index j : pending_)
+    if (core(j)) take(j, 0);
+  pending_.clear();
+  const int* start = H_->outerIndexPtr();
+  const int* row = H_->innerIndexPtr();
+  std::size_t ring_start = 0;
+  for (unsigned char ring = 1; ring <= 2; ++ring) {
+    const std::size_t ring_end = members_.size();
+    for (std::size_t a = ring_start; a < ring_end; ++a)
+      for (int k = start[members_[a]]; k < start[members_[a] + 1]; ++k)
+        if (member_of_[row[k]] < 0) take(row[k], ring);
+    ring_start = ring_end;
+  }
+  active_ = members_.size();
+  size_segment();
+}
+
+// The ODE state [delta / scale, 0] of the members that carry one, and the buffers.
+void LzbAdaptiveIntegrator::Impact::size_segment() {
   y_.assign(2 * active_, 0.0);
   y_at_.assign(2 * active_, 0.0);
   for (std::size_t a = 0; a < active_; ++a) y_[a] = delta_[members_[a]] / delta_scale_[members_[a]];
@@ -235,24 +352,15 @@ void LzbAdaptiveIntegrator::Impact::member_velocities(const State& y,
   for (std::size_t a = 0; a < active_; ++a) {
     const Index j = members_[a];
     const double increment = y[active_ + a] * impulse_scale_[j];
+    // (an elastic segment's outer ring has neighbours beyond the members: end_segment moves them)
     for (int k = start[j]; k < start[j + 1]; ++k)
-      velocity[std::size_t(member_of_[row[k]])] += value[k] * increment;
+      if (const int other = member_of_[row[k]]; other >= 0)
+        velocity[std::size_t(other)] += value[k] * increment;
   }
 }
 
 double LzbAdaptiveIntegrator::Impact::member_velocity(const State& y, std::size_t member) const {
-  const Index j = members_[member];
-  double velocity = velocity_[j];
-  const int* start = H_->outerIndexPtr();
-  const int* row = H_->innerIndexPtr();
-  const double* value = H_->valuePtr();
-  // H is symmetric: column j holds row j, the contacts whose impulses move u_j
-  for (int k = start[j]; k < start[j + 1]; ++k) {
-    const int other = member_of_[row[k]];
-    if (other >= 0 && std::size_t(other) < active_)
-      velocity += value[k] * y[active_ + std::size_t(other)] * impulse_scale_[row[k]];
-  }
-  return velocity;
+  return column_velocity(member, [&](std::size_t other) { return y[active_ + other]; });
 }
 
 double LzbAdaptiveIntegrator::Impact::member_value(std::size_t member, int kind,
@@ -315,6 +423,10 @@ double LzbAdaptiveIntegrator::Impact::watched_value(std::size_t member, int kind
 void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& before,
                                            const Watched& after,
                                            std::vector<internal::Crossing>& found) {
+  if (within_steps_) {
+    locate_turns(t0, t1, before, after);
+    return;
+  }
   const double resolution = 4.0 * DBL_EPSILON * t1;
   auto check = [&](std::size_t member, int kind) {
     const double q0 = watched_value(member, kind, before);
@@ -349,16 +461,101 @@ void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& 
   }
 }
 
+double LzbAdaptiveIntegrator::Impact::member_velocity_at(const internal::DenseOutput::Weights& w,
+                                                         std::size_t member) const {
+  return column_velocity(member,
+                         [&](std::size_t other) { return ode_.component_at(w, active_ + other); });
+}
+
+// Where a member's u_j changes sign within [t0, t1], narrowed on its own column of H: a peak
+// of delta_j (u_j turning positive) or a closing (negative).
+void LzbAdaptiveIntegrator::Impact::locate_turns(double t0, double t1, const Watched& before,
+                                                 const Watched& after) {
+  const double resolution = 4.0 * DBL_EPSILON * t1;
+  for (std::size_t p = 0; p < members_.size(); ++p) {
+    const double u0 = before.velocity[p], u1 = after.velocity[p];
+    const bool closing = u0 > 0.0 && u1 <= 0.0;
+    if (!closing && !(u0 < 0.0 && u1 >= 0.0)) continue;
+    const double sign = closing ? 1.0 : -1.0;  // > 0 before the turn
+    auto q = [&](double t) { return sign * member_velocity_at(ode_.weights_at(t), p); };
+    turns_.push_back(
+        {p, narrow_crossing(q, t0, t1, sign * u0, sign * u1, resolution).upper, closing});
+  }
+}
+
+bool LzbAdaptiveIntegrator::Impact::settle_turns(double t0, double t1) {
+  using Gauss = boost::math::quadrature::gauss<double, 8>;
+  bool changed = false;
+  for (const Turn& turn : turns_) {
+    const std::size_t p = turn.member;
+    const Index j = members_[p];
+    const double scale = delta_scale_[j];
+    const double at_turn = ode_.component_at(ode_.weights_at(turn.time), p) * scale;
+    if (!turn.closing) {
+      if (at_turn <= 0.0) continue;  // an open contact that stopped approaching: no force
+      if (const double f = force(j, at_turn); f > max_force_[j]) {
+        max_force_[j] = f;
+        time_of_max_[j] = turn.time;
+      }
+      continue;
+    }
+    if (at_turn >= 0.0) continue;  // still loaded: the same law both ways
+    // the clamp: delta_j is at its least at the turn and grows from 0 there
+    if (!changed) y_settled_ = ode_.state();
+    changed = true;
+    const double length = t1 - turn.time;
+    double impulse = 0.0;
+    const auto& x = Gauss::abscissa();
+    const auto& w = Gauss::weights();
+    for (std::size_t k = 0; k < x.size(); ++k)  // the nodes +-x_k (eight: no middle one)
+      for (const double side : {-1.0, 1.0}) {
+        const double t = turn.time + 0.5 * length * (1.0 + side * x[k]);
+        const double delta = ode_.component_at(ode_.weights_at(t), p) * scale - at_turn;
+        impulse += 0.5 * length * w[k] * force(j, std::max(delta, 0.0));
+      }
+    const double impulse_before = ode_.component_at(ode_.weights_at(t0), active_ + p);
+    y_settled_[p] = ode_.state()[p] - at_turn / scale;
+    y_settled_[active_ + p] = impulse_before + impulse / impulse_scale_[j];
+  }
+  turns_.clear();
+  return changed;
+}
+
+bool LzbAdaptiveIntegrator::Impact::outgrown(const State& y) const {
+  for (std::size_t a = 0; a < active_; ++a)
+    if (ring_[a] == 2 && (y[a] > 0.0 || y[active_ + a] != 0.0)) return true;
+  return false;
+}
+
 // Writes the members' state at the end of the segment (state y) into the per-contact arrays.
 void LzbAdaptiveIntegrator::Impact::end_segment(const State& y) {
   member_velocities(y, velocity_at_);
   for (std::size_t p = 0; p < members_.size(); ++p) velocity_[members_[p]] = velocity_at_[p];
+  const int* start = H_->outerIndexPtr();
+  const int* row = H_->innerIndexPtr();
+  const double* value = H_->valuePtr();
   for (std::size_t a = 0; a < active_; ++a) {
     const Index j = members_[a];
     delta_[j] = delta_of(a, y);
     const double increment = y[active_ + a] * impulse_scale_[j];
     impulse_[j] += increment;
     closed_impulse_sum_ += increment;
+    if (!within_steps_) continue;
+    // the phases a segment that locates its switches starts from
+    const double u = velocity_[j];
+    phase_[j] = delta_[j] > 0.0            ? (u < 0.0 ? Phase::compression : Phase::expansion)
+                : u < -velocity_tolerance_ ? Phase::compression
+                                           : Phase::open;
+    // an outer ring's contact that loaded within the last step moved contacts beyond the members
+    if (ring_[a] == 2 && increment != 0.0)
+      for (int k = start[j]; k < start[j + 1]; ++k)
+        if (const Index other = row[k]; member_of_[other] < 0) {
+          velocity_[other] += value[k] * increment;
+          if (velocity_[other] < -velocity_tolerance_ && phase_[other] == Phase::open) {
+            phase_[other] = Phase::compression;  // joining
+            pending_.push_back(other);
+          }
+        }
   }
 }
 
@@ -466,7 +663,8 @@ void LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
   // the first step: a small share of the time the fastest contact takes to stop
   double first_step = 1.0;
   for (std::size_t a = 0; a < active_; ++a)
-    first_step = std::min(first_step, delta_scale_[members_[a]] / -u_minus(members_[a]));
+    if (u_minus(members_[a]) < 0.0)
+      first_step = std::min(first_step, delta_scale_[members_[a]] / -u_minus(members_[a]));
   ode_.restart(y_, 0.0, 1e-3 * first_step);
   if (observer) notify(0.0, &y_, *observer);
   auto rhs = [this](const State& y, State& dydt, double) { derivative(y, dydt); };
@@ -496,11 +694,22 @@ void LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
                std::vector<internal::Crossing>& f) { locate(t0, t1, b, a, f); });
     if (found.empty()) {
       t = ode_.time();
-      account_work(ode_.state());
+      const bool changed = within_steps_ && settle_turns(step_start, t);
+      const State& y = changed ? y_settled_ : ode_.state();
+      account_work(y);
       if (observer) sample_until(t, *observer);
-      if (settled(ode_.state())) {
-        end_segment(ode_.state());
+      const bool grow = within_steps_ && outgrown(y);
+      if (!grow && settled(y)) {
+        end_segment(y);
         break;
+      }
+      if (changed || grow) {
+        // a state set back, or members to add: the same step goes on from here
+        end_segment(y);
+        begin_segment();
+        if (active_ == 0) break;
+        ode_.restart(y_, t, ode_.next_step());
+        segment_start_ = t;
       }
       continue;
     }

@@ -27,7 +27,11 @@ TEST(ConfigurationCheck, ReportsWhatLammpsShows) {
   const PackingCase lzb = lzb_hexagon("[0.0, 1.0]");
   ASSERT_TRUE(lzb.run.configuration.has_value());
   const granular::ConfigurationCheck& check = *lzb.run.configuration;
-  EXPECT_NEAR(check.time, 4.189939155371021e-4, 1e-9 * check.time);  // LAMMPS's end time
+  // LAMMPS's end time: the LZB impact ends at the end of the step that finds it settled, which
+  // moves with how the steps fall (measured 3.8e-8 of it apart, 16 ps, since the elastic
+  // switches are kept within the steps); the beads' velocities change by some 1e-9 of V in
+  // that time, well within the bounds on RMS and worst below
+  EXPECT_NEAR(check.time, 4.189939155371021e-4, 1e-7 * check.time);
   const Eigen::MatrixX2d lammps = lammps_velocities("hexagonal_10x10_v_at_lzb_end.csv");
   ASSERT_EQ(lammps.rows(), lzb.model.body_count());
   const Eigen::VectorXd& v = lzb.run.impact.velocity_after;

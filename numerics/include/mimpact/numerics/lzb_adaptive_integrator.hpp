@@ -58,6 +58,15 @@ struct LzbAdaptiveOptions {
 // The ODE carries only the contacts holding energy; the contacts they push (their neighbours
 // through H) are watched for joining, and every other contact costs nothing. The work of a
 // step is proportional to the contacts taking part: about the width of the wave in a chain.
+//
+// Where an elastic impact (every e = 1) holds many contacts (a packing's), a located switch
+// would end a step of all of them, and the switches grow with them. There the switches stay
+// within the steps: the members (the contacts holding energy or approaching, and two rings of
+// their neighbours) all carry delta_j and P_j; a separating contact's delta_j runs below 0,
+// its force switching off by itself; where it approaches again, it is set back to grow from 0
+// and its impulse over the rest of the step integrated again (Gauss-Legendre on the dense
+// output); peaks are narrowed on the contact's own column of H. A step's work is then the
+// members', and the steps those the forces' smoothness allows (docs/model.md, section 10).
 class LzbAdaptiveIntegrator : public ImpactIntegrator {
  public:
   explicit LzbAdaptiveIntegrator(LzbAdaptiveOptions options = {});

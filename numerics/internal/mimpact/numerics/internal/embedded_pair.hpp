@@ -45,6 +45,8 @@ class EmbeddedPair {
   }
   // The length of the last step (s), 0 before the first.
   double last_step() const { return last_step_; }
+  // The step the controller would try next (s).
+  double next_step() const { return next_step_; }
   // Steps taken since construction.
   std::int64_t steps() const { return steps_; }
 
