@@ -206,7 +206,8 @@ writes [results/packing_scale.md](results/packing_scale.md) with every run; `ben
 times the same impacts). The error is against the impulse steps Richardson-extrapolated from
 their two finest runs. The contacts per step grow with the contacts the wave reaches, but the
 impact lasts longer in a larger packing and the wake behind the front stays loaded, so the
-time at a given accuracy grows faster than the contacts reached.
+impulse steps' time at a given accuracy grows faster than the contacts reached. The adaptive
+LZB's follows them: its elastic switches stay within its steps (docs/model.md, section 10).
 
 {chr(10).join(rows)}
 """

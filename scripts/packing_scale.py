@@ -84,7 +84,7 @@ def wake(side, delta_p=2e-7, every=100):
     """The contacts in the impact against time, in frames of the impulse steps every `every`
     steps: all those carrying a force, and those above 1e-2 of the largest force then."""
     result = mimpact.run_packing({**scene(side, {"delta_p": delta_p}),
-                                  "record": {"frames": every}})
+                                  "record": {"every": every, "frames": 1}})
     forces = result.frames["forces"][1:]
     largest = forces.max(axis=1)
     return {"side": side, "delta_p": delta_p, "time": result.frames["time"][1:].tolist(),
