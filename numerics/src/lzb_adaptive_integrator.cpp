@@ -39,12 +39,12 @@ constexpr int kSamplesPerStep = 2;
 // suite's largest is 0.93 times it, at 1e-12).
 constexpr double kLocalErrorShare = 1.0 / 100.0;
 
-// An elastic impact keeps its switches within its steps while this many contacts hold energy or
-// approach, and locates them again once fewer than kLeaveWithinSteps do. Each located switch
-// ends a step of all the members, and the switches grow with the members: a packing's impact
-// then costs as the square of its contacts. Kept within, the switches cost a step no more than
-// its smooth parts, and the steps are those the non-smooth forces' error allows: longer where
-// many contacts switch, shorter where few do (measured below, docs/model.md section 10).
+// An elastic impact keeps its switches within its steps once kEnterWithinSteps contacts hold
+// energy or approach, and locates them again once fewer than kLeaveWithinSteps do. Each located
+// switch ends a step of all the members, and the switches grow with the members: a packing's
+// impact then costs as the square of its contacts. Kept within, a switch costs nothing of its
+// own, and the steps are those the released forces' error allows: the cheaper where many
+// contacts switch, the dearer where few do (measured in docs/model.md, section 10).
 constexpr std::size_t kEnterWithinSteps = 128, kLeaveWithinSteps = 64;
 
 // The watched quantities at one time: the members' velocities and the active ones' delta.
