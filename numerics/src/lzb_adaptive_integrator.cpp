@@ -124,6 +124,8 @@ class LzbAdaptiveIntegrator::Impact {
   // a contact of the outer ring holds energy or approaches: its neighbours must join
   bool outgrown(const State& y) const;
 
+  // contact j holds energy or approaches faster than tolerance * V (at the last segment's end)
+  bool takes_part(Index j) const { return delta_[j] > 0.0 || velocity_[j] < -velocity_tolerance_; }
   double delta_of(std::size_t member, const State& y) const {
     return std::max(y[member], 0.0) * delta_scale_[members_[member]];
   }
@@ -234,7 +236,7 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
 void LzbAdaptiveIntegrator::Impact::begin_segment() {
   if (elastic_) {
     std::size_t core = 0;
-    auto count = [&](Index j) { core += delta_[j] > 0.0 || velocity_[j] < -velocity_tolerance_; };
+    auto count = [&](Index j) { core += takes_part(j); };
     if (members_.empty())
       for (Index j = 0; j < Index(phase_.size()); ++j) count(j);
     for (Index j : members_) count(j);
@@ -290,9 +292,7 @@ void LzbAdaptiveIntegrator::Impact::begin_elastic_segment() {
     members_.push_back(j);
     ring_.push_back(ring);
   };
-  auto core = [&](Index j) {
-    return member_of_[j] < 0 && (delta_[j] > 0.0 || velocity_[j] < -velocity_tolerance_);
-  };
+  auto core = [&](Index j) { return member_of_[j] < 0 && takes_part(j); };
   if (previous.empty() && pending_.empty()) {  // the first segment
     for (Index j = 0; j < Index(phase_.size()); ++j)
       if (core(j)) take(j, 0);
