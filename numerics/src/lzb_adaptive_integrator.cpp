@@ -1,9 +1,11 @@
 #include "mimpact/numerics/lzb_adaptive_integrator.hpp"
 
 #include <algorithm>
-#include <boost/math/quadrature/gauss.hpp>
+#include <array>
+#include <boost/numeric/odeint.hpp>
 #include <cfloat>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include "mimpact/common/error.hpp"
@@ -39,13 +41,12 @@ constexpr int kSamplesPerStep = 2;
 // suite's largest is 0.93 times it, at 1e-12).
 constexpr double kLocalErrorShare = 1.0 / 100.0;
 
-// An elastic impact keeps its switches within its steps once kEnterWithinSteps contacts hold
-// energy or approach, and locates them again once fewer than kLeaveWithinSteps do. Each located
-// switch ends a step of all the members, and the switches grow with the members: a packing's
-// impact then costs as the square of its contacts. Kept within, a switch costs nothing of its
-// own, and the steps are those the released forces' error allows: the cheaper where many
-// contacts switch, the dearer where few do (measured in docs/model.md, section 10).
-constexpr std::size_t kEnterWithinSteps = 128, kLeaveWithinSteps = 64;
+// Where a member's u_j changed sign within a step kept whole.
+struct Turn {
+  std::size_t member;
+  double time;
+  bool closing;  // u_j turned negative (else positive: a peak of delta_j)
+};
 
 // The watched quantities at one time: the members' velocities and the active ones' delta.
 struct Watched {
@@ -109,18 +110,22 @@ class LzbAdaptiveIntegrator::Impact {
   void notify(double t, const State* y, ImpactObserver& observer);
   void finish(double t, LzbResult& result);
 
-  // An elastic impact (every e = 1) keeps its switches within the steps (docs/model.md,
-  // section 10): its members, the contacts holding energy or approaching and two rings of their
-  // neighbours, all carry delta_j and P_j; a contact's delta_j runs below 0 once it separates,
-  // its force K max(delta_j, 0)^eta switching off by itself, and where it approaches again
-  // (u_j turning negative, a "closing" turn) it is set back to the clamp, delta_j - delta_j(turn),
-  // its impulse integrated again from there.
-  void begin_elastic_segment();
+  // An impact whose every law is continuous at the switches (e = 1, or bi-stiffness with e > 0:
+  // d delta_j/dt = -u_j or -u_j / e^2 meet where u_j = 0) keeps them within the steps
+  // (docs/model.md, section 10): its members, the contacts holding energy or approaching and two
+  // rings of their neighbours, all carry delta_j and P_j; a contact's delta_j runs below 0 once
+  // it separates, its force K max(delta_j, 0)^eta switching off by itself, and where it
+  // approaches again (u_j turning negative, a "closing" turn) it is set back to the clamp,
+  // delta_j - delta_j(turn); where an inelastic contact's u_j changes sign, delta_j goes on at
+  // the other rate. Both are settled after the step: the contact integrated again alone from
+  // the turn.
+  void begin_within_steps_segment();
   void locate_turns(double t0, double t1, const Watched& before, const Watched& after);
   double member_velocity_at(const internal::DenseOutput::Weights& w, std::size_t member) const;
-  // the peaks and closings of the step [t0, t1] just taken; true if a closing changed the state
-  // (then y_settled_ holds it)
+  // the peaks and closings of the step [t0, t1] just taken; true if one changed the state (then
+  // y_settled_ holds it)
   bool settle_turns(double t0, double t1);
+  bool settle_member(double t0, double t1, std::span<const Turn> turns);
   // a contact of the outer ring holds energy or approaches: its neighbours must join
   bool outgrown(const State& y) const;
 
@@ -143,9 +148,13 @@ class LzbAdaptiveIntegrator::Impact {
   std::int64_t steps_ = 0, contact_steps_ = 0;
   double segment_start_ = 0.0, last_sample_ = 0.0, closed_impulse_sum_ = 0.0;
 
+  // per active member: d delta_j/dt = -rate u_j over the segment (1, or 1/e^2 expanding)
+  std::vector<double> rate_;
   // per contact: law constants and scales
   std::vector<double> stiffness_, exponent_, expansion_rate_, release_factor_;
   std::vector<double> delta_scale_, impulse_scale_, energy_tolerance_;
+  std::vector<double> self_mobility_;     // H_jj (1/kg)
+  double local_tolerance_ = 0.0;          // a step's error share, in the state's scaled units
   std::vector<bool> gives_nothing_back_;  // e = 0
   // per contact: state at the start of the current segment
   std::vector<Phase> phase_;
@@ -161,17 +170,13 @@ class LzbAdaptiveIntegrator::Impact {
   std::vector<double> accounted_impulse_, accounted_velocity_;
   Watched before_, after_;
   std::vector<Index> previous_members_;  // begin_segment's buffer
-  // within the steps (elastic impacts)
-  bool elastic_ = false;             // every contact's e = 1
-  bool within_steps_ = false;        // the current segment keeps its switches within its steps
-  std::vector<unsigned char> ring_;  // per member: 0 holding energy or approaching, 1, 2 around
-  struct Turn {
-    std::size_t member;
-    double time;
-    bool closing;  // u_j turned negative (else positive: a peak of delta_j)
-  };
-  std::vector<Turn> turns_;
-  State y_settled_;                   // the state at a step's end with its closings settled
+  // within the steps (impacts whose laws are continuous at their switches)
+  bool continuous_laws_ = false;  // every contact's law continuous at its switches
+  bool within_steps_ = false;     // the current segment keeps its switches within its steps
+  std::size_t enter_within_steps_ = 0, leave_within_steps_ = 0;  // contacts taking part
+  std::vector<unsigned char> ring_;   // per member: 0 holding energy or approaching, 1, 2 around
+  std::vector<Turn> turns_;           // by member, then time, once settle_turns sorts them
+  State y_settled_;                   // the state at a step's end with its turns settled
   std::vector<Index> pending_;        // non-members a member's impulse set approaching
   ImpactSampler* sampler_ = nullptr;  // the integrator's, for the impact being integrated
 };
@@ -191,6 +196,8 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
   reset(delta_scale_, 0.0);
   reset(impulse_scale_, 0.0);
   reset(energy_tolerance_, 0.0);
+  reset(self_mobility_, 0.0);
+  local_tolerance_ = kLocalErrorShare * options.tolerance;
   reset(gives_nothing_back_, false);
   for (std::size_t j = 0; j < m; ++j) {
     const LawConstants& law = laws[j];
@@ -206,6 +213,7 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
     // the natural scales of contact j: the impulse that stops V, the indentation that stores
     // the energy V^2 / (2 H_jj)
     const double h = diagonal(Index(j));
+    self_mobility_[j] = h;
     impulse_scale_[j] = fastest / h;
     delta_scale_[j] = std::pow((1.0 + law.exponent) * fastest * fastest / (2.0 * h * law.stiffness),
                                1.0 / (1.0 + law.exponent));
@@ -224,9 +232,13 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
     if (velocity_[j] < -velocity_tolerance_) phase_[j] = Phase::compression;
   members_.clear();
   pending_.clear();
-  elastic_ = m > 0;
-  for (std::size_t j = 0; j < m; ++j) elastic_ = elastic_ && laws[j].restitution == 1.0;
+  continuous_laws_ = m > 0;
+  for (std::size_t j = 0; j < m; ++j)
+    continuous_laws_ = continuous_laws_ && (laws[j].restitution == 1.0 ||
+                                            (!laws[j].mono_stiffness && laws[j].restitution > 0.0));
   within_steps_ = false;
+  enter_within_steps_ = std::size_t(options.within_steps_from);
+  leave_within_steps_ = enter_within_steps_ / 2;
   steps_ = contact_steps_ = 0;
   segment_start_ = last_sample_ = closed_impulse_sum_ = 0.0;
 }
@@ -234,17 +246,17 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
 // The members of the segment that starts now: the contacts holding energy, then the open
 // contacts their forces reach through H. The ODE state starts at [delta / scale, 0].
 void LzbAdaptiveIntegrator::Impact::begin_segment() {
-  if (elastic_) {
+  if (continuous_laws_) {
     std::size_t core = 0;
     auto count = [&](Index j) { core += takes_part(j); };
     if (members_.empty())
       for (Index j = 0; j < Index(phase_.size()); ++j) count(j);
     for (Index j : members_) count(j);
     core += pending_.size();
-    within_steps_ = core >= (within_steps_ ? kLeaveWithinSteps : kEnterWithinSteps);
+    within_steps_ = core >= (within_steps_ ? leave_within_steps_ : enter_within_steps_);
   }
   if (within_steps_) {
-    begin_elastic_segment();
+    begin_within_steps_segment();
     return;
   }
   for (Index j : members_) member_of_[j] = -1;
@@ -278,10 +290,10 @@ void LzbAdaptiveIntegrator::Impact::begin_segment() {
   size_segment();
 }
 
-// The members of an elastic segment: the contacts holding energy or approaching faster than
+// The members of a segment within the steps: the contacts holding energy or approaching faster than
 // tolerance * V, then the ring of their neighbours through H, then the ring of those: a
 // contact of the first ring may load within a step, and its impulse then moves only members.
-void LzbAdaptiveIntegrator::Impact::begin_elastic_segment() {
+void LzbAdaptiveIntegrator::Impact::begin_within_steps_segment() {
   for (Index j : members_) member_of_[j] = -1;
   std::vector<Index>& previous = previous_members_;
   previous.swap(members_);
@@ -320,7 +332,12 @@ void LzbAdaptiveIntegrator::Impact::begin_elastic_segment() {
 void LzbAdaptiveIntegrator::Impact::size_segment() {
   y_.assign(2 * active_, 0.0);
   y_at_.assign(2 * active_, 0.0);
-  for (std::size_t a = 0; a < active_; ++a) y_[a] = delta_[members_[a]] / delta_scale_[members_[a]];
+  rate_.resize(active_);
+  for (std::size_t a = 0; a < active_; ++a) {
+    const Index j = members_[a];
+    y_[a] = delta_[j] / delta_scale_[j];
+    rate_[a] = phase_[j] == Phase::expansion ? expansion_rate_[j] : 1.0;
+  }
   rhs_velocity_.resize(members_.size());
   velocity_at_.resize(members_.size());
   accounted_impulse_.assign(active_, 0.0);
@@ -352,7 +369,8 @@ void LzbAdaptiveIntegrator::Impact::member_velocities(const State& y,
   for (std::size_t a = 0; a < active_; ++a) {
     const Index j = members_[a];
     const double increment = y[active_ + a] * impulse_scale_[j];
-    // (an elastic segment's outer ring has neighbours beyond the members: end_segment moves them)
+    // (a segment within the steps: its outer ring has neighbours beyond the members, moved by
+    // end_segment)
     for (int k = start[j]; k < start[j + 1]; ++k)
       if (const int other = member_of_[row[k]]; other >= 0)
         velocity[std::size_t(other)] += value[k] * increment;
@@ -384,8 +402,7 @@ void LzbAdaptiveIntegrator::Impact::derivative(const State& y, State& dydt) {
   member_velocities(y, rhs_velocity_);
   for (std::size_t a = 0; a < active_; ++a) {
     const Index j = members_[a];
-    const double rate = phase_[j] == Phase::expansion ? expansion_rate_[j] : 1.0;
-    dydt[a] = -rhs_velocity_[a] * rate / delta_scale_[j];
+    dydt[a] = -rhs_velocity_[a] * rate_[a] / delta_scale_[j];
     dydt[active_ + a] = force(j, delta_of(a, y)) / impulse_scale_[j];
   }
 }
@@ -484,41 +501,75 @@ void LzbAdaptiveIntegrator::Impact::locate_turns(double t0, double t1, const Wat
 }
 
 bool LzbAdaptiveIntegrator::Impact::settle_turns(double t0, double t1) {
-  using Gauss = boost::math::quadrature::gauss<double, 8>;
+  std::stable_sort(turns_.begin(), turns_.end(),
+                   [](const Turn& a, const Turn& b) { return a.member < b.member; });
+  if (!turns_.empty()) y_settled_ = ode_.state();
   bool changed = false;
-  for (const Turn& turn : turns_) {
-    const std::size_t p = turn.member;
-    const Index j = members_[p];
-    const double scale = delta_scale_[j];
-    const double at_turn = ode_.component_at(ode_.weights_at(turn.time), p) * scale;
-    if (!turn.closing) {
-      if (at_turn <= 0.0) continue;  // an open contact that stopped approaching: no force
-      if (const double f = force(j, at_turn); f > max_force_[j]) {
-        max_force_[j] = f;
-        time_of_max_[j] = turn.time;
-      }
-      continue;
-    }
-    if (at_turn >= 0.0) continue;  // still loaded: the same law both ways
-    // the clamp: delta_j is at its least at the turn and grows from 0 there
-    if (!changed) y_settled_ = ode_.state();
-    changed = true;
-    const double length = t1 - turn.time;
-    double impulse = 0.0;
-    const auto& x = Gauss::abscissa();
-    const auto& w = Gauss::weights();
-    for (std::size_t k = 0; k < x.size(); ++k)  // the nodes +-x_k (eight: no middle one)
-      for (const double side : {-1.0, 1.0}) {
-        const double t = turn.time + 0.5 * length * (1.0 + side * x[k]);
-        const double delta = ode_.component_at(ode_.weights_at(t), p) * scale - at_turn;
-        impulse += 0.5 * length * w[k] * force(j, std::max(delta, 0.0));
-      }
-    const double impulse_before = ode_.component_at(ode_.weights_at(t0), active_ + p);
-    y_settled_[p] = ode_.state()[p] - at_turn / scale;
-    y_settled_[active_ + p] = impulse_before + impulse / impulse_scale_[j];
+  for (auto first = turns_.begin(); first != turns_.end();) {
+    const auto last = std::find_if(first, turns_.end(),
+                                   [&](const Turn& turn) { return turn.member != first->member; });
+    changed = settle_member(t0, t1, {first, last}) || changed;
+    first = last;
   }
   turns_.clear();
   return changed;
+}
+
+// One member's turns within the step [t0, t1], in time order. The step grew its delta_j at the
+// segment's rate, rate_ (from u_j's sign at its start), as if it had not turned. From the first
+// turn that changes its law (an inelastic contact's peak or re-loading, where 1 and 1/e^2 swap;
+// a separated contact approaching again, its delta_j set back to 0) to the step's end, the
+// contact is integrated again alone, to the same tolerance: its delta_j and P_j under its own
+// law, its u_j the step's plus what its new impulse changes, H_jj (P_j - P_j of the step); its
+// neighbours' impulses as the step found them. Left to the step, the law's change moved the
+// contact's own velocity (H_jj, the largest of its column) by up to 40 times the tolerance.
+bool LzbAdaptiveIntegrator::Impact::settle_member(double t0, double t1,
+                                                  std::span<const Turn> turns) {
+  namespace odeint = boost::numeric::odeint;
+  const std::size_t p = turns.front().member;
+  const Index j = members_[p];
+  const double scale = delta_scale_[j];
+  using Local = std::array<double, 2>;  // delta_j / scale, P_j's increment / impulse scale
+  auto alone = [&](const Local& x, Local& dxdt, double t) {
+    const internal::DenseOutput::Weights w = ode_.weights_at(t);
+    const double u = member_velocity_at(w, p) + self_mobility_[j] * impulse_scale_[j] *
+                                                    (x[1] - ode_.component_at(w, active_ + p));
+    dxdt[0] = -u * (u > 0.0 ? expansion_rate_[j] : 1.0) / scale;
+    dxdt[1] = force(j, std::max(x[0], 0.0) * scale) / impulse_scale_[j];
+  };
+  auto stepper = odeint::make_controlled<odeint::runge_kutta_dopri5<Local>>(local_tolerance_,
+                                                                            local_tolerance_);
+  Local x{};
+  double from = t0;
+  bool alone_since = false;  // integrated alone from `from`
+  auto advance = [&](double to) {
+    if (to > from) odeint::integrate_adaptive(stepper, alone, x, from, to, 0.25 * (to - from));
+    from = to;
+  };
+  for (const Turn& turn : turns) {
+    if (alone_since) advance(turn.time);
+    double delta = alone_since ? x[0] : ode_.component_at(ode_.weights_at(turn.time), p);
+    if (!turn.closing) {
+      if (const double f = force(j, std::max(delta, 0.0) * scale); f > max_force_[j]) {
+        max_force_[j] = f;
+        time_of_max_[j] = turn.time;
+      }
+      if (alone_since || expansion_rate_[j] == rate_[p]) continue;  // the law goes on
+    } else if (delta < 0.0) {
+      delta = 0.0;  // the clamp: delta_j is at its least at the turn and grows from 0 there
+    } else if (alone_since || rate_[p] == 1.0) {
+      continue;  // re-loading at the rate the step (or the contact alone) already takes
+    }
+    if (!alone_since) x[1] = ode_.component_at(ode_.weights_at(turn.time), active_ + p);
+    x[0] = delta;
+    from = turn.time;
+    alone_since = true;
+  }
+  if (!alone_since) return false;
+  advance(t1);
+  y_settled_[p] = x[0];
+  y_settled_[active_ + p] = x[1];
+  return true;
 }
 
 bool LzbAdaptiveIntegrator::Impact::outgrown(const State& y) const {

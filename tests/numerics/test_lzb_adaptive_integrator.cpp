@@ -16,11 +16,33 @@
 namespace mimpact::numerics {
 namespace {
 
-LzbResult lone_contact(double h, double u_minus, const ContactLaw& law, double tolerance) {
-  LzbAdaptiveIntegrator integrator({.tolerance = tolerance});
+// within_steps_from = 1: the switches kept within the steps (docs/model.md, section 10), as a
+// packing's impact keeps them; the default locates a lone contact's or a chain's
+LzbResult lone_contact(double h, double u_minus, const ContactLaw& law, double tolerance,
+                       std::int64_t within_steps_from = LzbAdaptiveOptions{}.within_steps_from) {
+  LzbAdaptiveIntegrator integrator(
+      {.tolerance = tolerance, .within_steps_from = within_steps_from});
   const ContactLaw laws[] = {law};
   return integrator.integrate(Eigen::MatrixXd::Constant(1, 1, h),
                               Eigen::VectorXd::Constant(1, u_minus), laws);
+}
+
+// Kept within the steps, a bi-stiffness contact's peak (e < 1: its delta goes on at 1/e^2 the
+// rate) is settled after the step that holds it, its impulse integrated again: the same
+// restitution and peak force, for any exponent (e = 0 and the mono-stiffness release, not
+// continuous, are always located).
+TEST(AdaptiveLone, WithinTheStepsRestitutionAndPeakForceAreExact) {
+  const double h = 1.0 / 0.02, u_minus = -0.7;
+  for (double eta : {1.0, 1.5, 2.5})
+    for (double e : {0.3, 0.8, 1.0}) {
+      const ContactLaw law{.stiffness = 3e9, .exponent = eta, .restitution = e};
+      const LzbResult within = lone_contact(h, u_minus, law, 1e-13, 1);
+      const LzbResult located = lone_contact(h, u_minus, law, 1e-13);
+      std::printf("eta %g, e %g: u+ %.3e from -e u-, peak %.3e from located's\n", eta, e,
+                  within.velocity(0) + e * u_minus, within.max_force(0) / located.max_force(0) - 1);
+      EXPECT_NEAR(within.velocity(0), -e * u_minus, 1e-12) << "eta " << eta << " e " << e;
+      EXPECT_NEAR(within.max_force(0) / located.max_force(0), 1.0, 1e-11);
+    }
 }
 
 // One contact: u+ = -e u- for both compliance models, any exponent (energetic restitution,
@@ -119,6 +141,15 @@ TEST(AdaptiveChain, DissipativeChainEndsAsOneBlock) {
     std::printf("%s, e = 0.6: adaptive %lld steps, max |v+ - V/21| = %.3g m/s\n",
                 std::string(enum_name(model)).c_str(), (long long)continuous.steps, spread);
     EXPECT_LE(spread, 1e-9);
+    if (model == ComplianceModel::bi_stiffness) {  // its switches kept within the steps too
+      LzbAdaptiveIntegrator within({.tolerance = 1e-10, .within_steps_from = 1});
+      const LzbResult kept = within.integrate(H, u_minus, laws);
+      const double kept_spread =
+          (chain.velocity_after(kept.impulse).array() - 1.0 / chain.beads).abs().maxCoeff();
+      std::printf("within the steps: %lld steps, max |v+ - V/21| = %.3g m/s\n",
+                  (long long)kept.steps, kept_spread);
+      EXPECT_LE(kept_spread, 1e-9);
+    }
     double previous = INFINITY;
     for (double delta_p : {4e-6, 1e-6}) {
       LzbImpulseIntegrator steps({.delta_p = delta_p});

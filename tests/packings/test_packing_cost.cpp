@@ -88,30 +88,37 @@ TEST(PackingCost, InSpaceTooTheWorkPerLoadedContactDoesNotGrowWithThePacking) {
 // The adaptive LZB on hexagonal packings struck at 1 m/s, tolerance 1e-6, the whole impact:
 // contact steps (the contacts each Runge-Kutta step carries, summed) per contact that carried
 // force and per second of the impact. Located one by one, every switch of any contact ended a
-// step of all of them, and the steps grew with the contacts (measured 2.48e6 and 7.17e6 on 16 x
-// 16 and 32 x 32, 0.51 s and 12.0 s); kept within the steps of an elastic impact, 4.72e5 and
-// 3.26e5 (0.09 s and 0.76 s; 56 x 56 2.56e5, 100 x 100 1.94e5 in 25 s; docs/model.md section 10).
+// step of all of them, and the steps grew with the contacts (measured for e = 1: 2.48e6 and
+// 7.17e6 on 16 x 16 and 32 x 32, 0.51 s and 12.0 s; for e = 0.9: 1.89e6 and 5.53e6, 0.27 s and
+// 9.3 s). Kept within the steps (docs/model.md section 10), for e = 1 4.61e5 and 3.26e5 (0.09 s
+// and 0.76 s; 56 x 56 2.56e5, 100 x 100 1.94e5 in 25 s), for e = 0.9, where an expanding
+// contact's delta goes at 1/e^2 its compression's rate, 4.02e5 and 2.66e5 (0.12 s and 0.92 s).
 TEST(PackingCost, TheAdaptiveLzbsWorkPerReachedContactDoesNotGrowWithThePacking) {
-  auto work = [](int side) {
-    const PackingCase packing = run_packing(lattice_scene(
-        "hexagonal", side, side, "[0, " + std::to_string(side / 2) + "]", "[0.0, 1.0]",
-        R"("impact": {"integrator": "adaptive", "tolerance": 1e-6},
-           "configuration_check": {"enabled": false})"));
-    const numerics::LzbResult& impact = packing.run.impact.result;
-    const auto reached = (impact.max_force.array() > 0.0).count();
-    EXPECT_GT(reached, 2 * side * side);  // the wave crossed: most contacts
-    // every contact reached switches at least twice (its peak, its release): fewer steps than
-    // contacts reached, the switches were not each a step's end (measured 743 steps for 690
-    // contacts on 16 x 16, 1 205 for 2 930 on 32 x 32)
-    if (side >= 32) {
-      EXPECT_LT(impact.steps, reached);
-    }
-    return double(impact.contact_steps) / (double(reached) * impact.duration);
-  };
-  const double small = work(16), large = work(32);
-  std::printf("contact steps per reached contact and second: 16 x 16 %.3g, 32 x 32 %.3g\n", small,
-              large);
-  EXPECT_LT(large, small);
+  for (const double restitution : {1.0, 0.9}) {
+    auto work = [&](int side) {
+      const PackingCase packing = run_packing(lattice_scene(
+          "hexagonal", side, side, "[0, " + std::to_string(side / 2) + "]", "[0.0, 1.0]",
+          R"("contact": {"model": "bi-stiffness", "exponent": 1.5, "restitution": )" +
+              std::to_string(restitution) + R"(},
+             "impact": {"integrator": "adaptive", "tolerance": 1e-6},
+             "configuration_check": {"enabled": false})"));
+      const numerics::LzbResult& impact = packing.run.impact.result;
+      const auto reached = (impact.max_force.array() > 0.0).count();
+      EXPECT_GT(reached, 2 * side * side);  // the wave crossed: most contacts
+      // every contact reached switches at least twice (its peak, its release): fewer steps than
+      // contacts reached, the switches were not each a step's end (measured 973 steps for 2 930
+      // contacts on 32 x 32 at e = 0.9, 1 205 for 2 930 at e = 1)
+      if (side >= 32) {
+        EXPECT_LT(impact.steps, reached) << "e = " << restitution;
+      }
+      return double(impact.contact_steps) / (double(reached) * impact.duration);
+    };
+    const double small = work(16), large = work(32);
+    std::printf(
+        "e = %g: contact steps per reached contact and second: 16 x 16 %.3g, 32 x 32 %.3g\n",
+        restitution, small, large);
+    EXPECT_LT(large, small) << "e = " << restitution;
+  }
 }
 
 // A window that one group integrates may outlast the bound that keeps two groups from meeting

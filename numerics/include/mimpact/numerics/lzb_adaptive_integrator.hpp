@@ -34,6 +34,15 @@ struct LzbAdaptiveOptions {
   std::int64_t max_steps = 100'000'000;
   // The observer sees the state every this long (s) of the impact; 0: the start and the end.
   double sample_interval = 0.0;
+  // An impact whose laws are continuous at its switches (e = 1, or bi-stiffness with e > 0)
+  // keeps them within its steps while at least this many contacts hold energy or approach, until
+  // fewer than half as many do; otherwise each switch is located and ends a step of all the
+  // contacts, whose switches grow with them (a packing's impact then costs as the square of its
+  // contacts). Kept within, a switch costs nothing of its own, and the steps are those the
+  // released forces' error allows: the cheaper where many contacts switch, the dearer where few
+  // do (docs/model.md, section 10: on hexagonal packings locating is the cheaper below about
+  // 128). 1: always within the steps; more than the impact's contacts: always located.
+  std::int64_t within_steps_from = 128;
   // Contacts the observer sees (empty: all of them), until set_sampled_contacts changes them.
   std::vector<Eigen::Index> sampled_contacts;
 
@@ -42,6 +51,7 @@ struct LzbAdaptiveOptions {
     field("tolerance", self.tolerance, kToleranceRange);
     field("max_steps", self.max_steps, at_least(1));
     field("sample_interval", self.sample_interval, at_least(0.0, "s, 0: start and end only"));
+    field("within_steps_from", self.within_steps_from, at_least(1, "contacts"));
     field("sampled_contacts", self.sampled_contacts, at_least(0, "contact indices"));
   }
 };
@@ -59,14 +69,16 @@ struct LzbAdaptiveOptions {
 // through H) are watched for joining, and every other contact costs nothing. The work of a
 // step is proportional to the contacts taking part: about the width of the wave in a chain.
 //
-// Where an elastic impact (every e = 1) holds many contacts (a packing's), a located switch
-// would end a step of all of them, and the switches grow with them. There the switches stay
+// Where an impact holds many contacts (a packing's), a located switch would end a step of all
+// of them, and the switches grow with them. Where every law is continuous at its switches (e =
+// 1, or bi-stiffness with e > 0: d delta_j/dt = -u_j and -u_j / e^2 meet where u_j = 0) they stay
 // within the steps: the members (the contacts holding energy or approaching, and two rings of
 // their neighbours) all carry delta_j and P_j; a separating contact's delta_j runs below 0,
-// its force switching off by itself; where it approaches again, it is set back to grow from 0
-// and its impulse over the rest of the step integrated again (Gauss-Legendre on the dense
-// output); peaks are narrowed on the contact's own column of H. A step's work is then the
-// members', and the steps those the forces' smoothness allows (docs/model.md, section 10).
+// its force switching off by itself; where it approaches again, it is set back to grow from 0;
+// where an inelastic contact's u_j changes sign its delta_j goes on at the other rate. Both are
+// settled after the step, the contact's impulse integrated again from the turn (Gauss-Legendre
+// on the dense output), turns narrowed on the contact's own column of H. A step's work is then
+// the members', and the steps those the forces' smoothness allows (docs/model.md, section 10).
 class LzbAdaptiveIntegrator : public ImpactIntegrator {
  public:
   explicit LzbAdaptiveIntegrator(LzbAdaptiveOptions options = {});

@@ -45,7 +45,8 @@ struct LzbImpactOptions {
   // The impulse steps' other options; max_steps and sampled_contacts (interactions of the
   // system) serve the adaptive integrator too. Their delta_p is the one above.
   numerics::LzbOptions impulse_steps;
-  // The adaptive integrator's sample_interval (its other options come from the fields above).
+  // The adaptive integrator's sample_interval and within_steps_from (its other options come
+  // from the fields above).
   numerics::LzbAdaptiveOptions adaptive;
 
   template <class Self, class Visit>
@@ -61,7 +62,8 @@ struct LzbImpactOptions {
                                        });
     numerics::LzbAdaptiveOptions::visit_fields(
         self.adaptive, [&](std::string_view name, auto& value, auto&&... allowed) {
-          if (name == "sample_interval") field(name, value, allowed...);
+          if (name == "sample_interval" || name == "within_steps_from")
+            field(name, value, allowed...);
         });
   }
 
