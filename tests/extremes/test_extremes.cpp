@@ -374,21 +374,27 @@ TYPED_TEST(ExtremesOfTheSteps, DeltaPFrom1e3To1e9OfTheNaturalImpulse) {
                             name("20 beads e = 0.9, delta_p / m V", share), share >= 1e-4);
 }
 
-// A lone contact: u+ = -e u- to the tolerance (x V = 1 m/s; the tolerance bounds each step's
-// error, their sum comes to at most 0.93 times it) at every tolerance from 1e-3 to 1e-12,
-// and at 1e-13, the smallest double precision meets; below, the tolerance is refused, not
-// looped on.
-TEST(ExtremesAdaptive, TolerancesFrom1e3To1e12) {
+template <class Kind>
+void expect_tolerances_from_1e3_to_1e12() {
   for (double tolerance : {1e-3, 1e-6, 1e-9, 1e-12, 1e-13})
     for (double e : {0.0, 0.5, 1.0}) {
       const Outcome out =
-          expect_sound<AdaptiveKind>(struck_chain(1, 1.0, law(1.5, e)), tolerance,
-                                     name("two bodies, tolerance", tolerance) + name(", e", e));
-      EXPECT_NEAR(out.result.velocity(0), e, tolerance) << tolerance;
+          expect_sound<Kind>(struck_chain(1, 1.0, law(1.5, e)), tolerance,
+                             name("two bodies, tolerance", tolerance) + name(", e", e));
+      EXPECT_NEAR(out.result.velocity(0), e, tolerance) << Kind::kName << " " << tolerance;
     }
   for (double tolerance : {1e-3, 1e-6, 1e-9, 1e-12})
-    expect_sound<AdaptiveKind>(struck_chain(20, 1.0, law(1.5, 0.9)), tolerance,
-                               name("20 beads e = 0.9, tolerance", tolerance), tolerance >= 1e-9);
+    expect_sound<Kind>(struck_chain(20, 1.0, law(1.5, 0.9)), tolerance,
+                       name("20 beads e = 0.9, tolerance", tolerance), tolerance >= 1e-9);
+}
+
+// A lone contact: u+ = -e u- to the tolerance (x V = 1 m/s; the tolerance bounds each step's
+// error, their sum comes to at most 0.93 times it) at every tolerance from 1e-3 to 1e-12,
+// and at 1e-13, the smallest double precision meets; below, the tolerance is refused, not
+// looped on. Located, and kept within the steps (testing::AdaptiveWithinStepsKind).
+TEST(ExtremesAdaptive, TolerancesFrom1e3To1e12) {
+  expect_tolerances_from_1e3_to_1e12<AdaptiveKind>();
+  expect_tolerances_from_1e3_to_1e12<testing::AdaptiveWithinStepsKind>();
   for (double tolerance : {1e-14, 0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
     try {
       LzbAdaptiveIntegrator integrator({.tolerance = tolerance});
