@@ -521,8 +521,9 @@ bool LzbAdaptiveIntegrator::Impact::settle_turns(double t0, double t1) {
 // a separated contact approaching again, its delta_j set back to 0) to the step's end, the
 // contact is integrated again alone, to the same tolerance: its delta_j and P_j under its own
 // law, its u_j the step's plus what its new impulse changes, H_jj (P_j - P_j of the step); its
-// neighbours' impulses as the step found them. Left to the step, the law's change moved the
-// contact's own velocity (H_jj, the largest of its column) by up to 40 times the tolerance.
+// neighbours' impulses as the step found them. Corrected along the step's own velocity instead,
+// a lone contact at e = 0.3 landed up to 40 times the tolerance off: the law's change moves the
+// contact's own velocity through H_jj, the largest of its column.
 bool LzbAdaptiveIntegrator::Impact::settle_member(double t0, double t1,
                                                   std::span<const Turn> turns) {
   namespace odeint = boost::numeric::odeint;

@@ -90,7 +90,7 @@ TEST(PackingCost, InSpaceTooTheWorkPerLoadedContactDoesNotGrowWithThePacking) {
 // force and per second of the impact. Located one by one, every switch of any contact ended a
 // step of all of them, and the steps grew with the contacts (measured for e = 1: 2.48e6 and
 // 7.17e6 on 16 x 16 and 32 x 32, 0.51 s and 12.0 s; for e = 0.9: 1.89e6 and 5.53e6, 0.27 s and
-// 9.3 s). Kept within the steps (docs/model.md section 10), for e = 1 4.61e5 and 3.26e5 (0.09 s
+// 9.3 s). Kept within the steps (docs/model.md section 10), for e = 1 4.61e5 and 3.23e5 (0.09 s
 // and 0.76 s; 56 x 56 2.56e5, 100 x 100 1.94e5 in 25 s), for e = 0.9, where an expanding
 // contact's delta goes at 1/e^2 its compression's rate, 4.02e5 and 2.66e5 (0.12 s and 0.92 s).
 TEST(PackingCost, TheAdaptiveLzbsWorkPerReachedContactDoesNotGrowWithThePacking) {

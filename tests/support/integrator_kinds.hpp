@@ -94,7 +94,7 @@ struct AdaptiveKind {
 // contacts (their force turns a corner at the release), +2.0e-9 with Hertz's; v+ / V the same
 // at 1e-4 and 1 m/s to 9e-9, not to round-off (a switch falling on either side of a sample);
 // and a long chain keeps the contacts behind its wave as members, touching and parting far
-// below tolerance * V (1 000 beads at 1e-6: 478 contacts a step, located 7.3). The packings.
+// below tolerance * V (1 000 beads at 1e-6: 478 contacts a step, located 7.3). The packings'
 // rule keeps it to impacts of many contacts; tests/extremes/test_extremes.cpp runs it over the
 // adaptive integrator's tolerances.
 struct AdaptiveWithinStepsKind : AdaptiveKind {
