@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mimpact/granular/moving_contacts.hpp"
+#include "mimpact/numerics/internal/onset_quadrature.hpp"
 #include "mimpact/numerics/internal/runge_kutta_nystrom.hpp"
 #include "mimpact/plugins/internal/contact_events.hpp"
 
@@ -75,20 +76,19 @@ class MovingContacts::Group {
 
  private:
   // A contact of two members, or of a member and a wall: its slots (second < 0: -1 - wall), its
-  // law and history, and its record's id in the world (-1: not recorded yet). An elastic
-  // contact (e = 1) is a smooth force of the positions, K max(delta, 0)^eta, always in the
-  // right-hand side: it closes and opens without an event. An inelastic one follows the
-  // bi-stiffness curves from its largest overlap, which the events keep: it joins, turns and
-  // leaves at located events, each a restart.
+  // law and history, and its record's id in the world (-1: not recorded yet). Every contact is
+  // a force of the positions in the right-hand side, closing and opening without an event: an
+  // elastic one (e = 1) K max(delta, 0)^eta, an inelastic one the bi-stiffness curves from its
+  // largest overlap, its history, which changes only where the overlap turns above it (found
+  // within a step, and the step amended: amend_switches) and is forgotten where it opens.
   struct Contact {
     std::int32_t world_id = -1;
     std::int32_t first_body = 0, second_body = 0;  // world bodies (second < 0: -1 - wall)
     std::int32_t first = 0, second = 0;            // member slots (second < 0: -1 - wall)
     numerics::ContactLaw law;
-    double reach = 0.0;  // m: the sum of the radii, or the bead's radius against a wall
-    bool elastic = true;
-    bool loaded = false;  // inelastic: joined; elastic: overlapping at the last move
-    double max_compression = 0.0;
+    double reach = 0.0;            // m: the sum of the radii, or the bead's radius against a wall
+    bool loaded = false;           // overlapping at the last move
+    double max_compression = 0.0;  // m: the history, 0 for an elastic contact
     double compression = 0.0, force = 0.0;  // m, N: at the last move
     double impulse = 0.0;                   // N s, until the last restart
     double max_force = 0.0, time_of_max_force = 0.0, dissipated = 0.0;
@@ -125,12 +125,18 @@ class MovingContacts::Group {
   struct Samples {
     std::vector<double> gap, rate;
   };
-  // what an event does: take a body, or change an inelastic contact (a restart each)
-  enum class Action { take, join, leave, turn };
+  // A body taken where it touches a member (a restart).
   struct Event {
-    std::size_t entry = 0;  // of the scan: watched_, then contacts_ by scanned_
-    Action action = Action::take;
+    std::size_t entry = 0;  // of watched_
     double time = 0.0;
+  };
+  // An inelastic spring's history changed within the step just taken (amend_switches): where
+  // it turned above its history (its overlap there, m, and the history from then on), or
+  // opened (0); at time (s), which the group passes before the spring's law changes for it
+  // (settle_histories).
+  struct HistoryChange {
+    std::int32_t spring = 0;
+    double time = 0.0, overlap = 0.0, max_compression = 0.0;
   };
 
   void add_member(std::int32_t body);
@@ -158,7 +164,6 @@ class MovingContacts::Group {
   // gap and rate of contact c, or of watched pair w at time t, along the state y
   void contact_gap(const Contact& c, const double* y, double& gap, double& rate) const;
   void watch_gap(const Watch& w, double t, const double* y, double& gap, double& rate) const;
-  void entry_gap(std::size_t entry, double t, const double* y, double& gap, double& rate) const;
   void probe_entry(std::size_t entry, const numerics::internal::RungeKuttaNystrom::Weights& w);
   // the entries' gaps and rates at t, in their order
   void measure(double t, const std::vector<std::size_t>& entries, Samples& samples);
@@ -179,13 +184,28 @@ class MovingContacts::Group {
   struct Motion {
     Group& group;
     void operator()(const State& y, State& dydt, double) { group.rhs(y.data(), dydt.data()); }
-    void amend(const State& start, State& end, double h,
-               std::span<const std::size_t> switching) const {
-      group.amend_onsets(start, end, h, switching);
+    double amend(const State& start, const State& start_rate, State& end, const State& end_rate,
+                 double h, std::span<const std::size_t> switching) {
+      return group.amend_switches(start, start_rate, end, end_rate, h, switching);
     }
   };
-  void amend_onsets(const State& start, State& end, double h,
-                    std::span<const std::size_t> switching) const;
+  // 1, or the share of h a shorter step should take (amend_histories)
+  double amend_switches(const State& start, const State& start_rate, State& end,
+                        const State& end_rate, double h, std::span<const std::size_t> switching);
+  // spring j's separation (m), its rate times h and, given the state's derivative dydt, its
+  // acceleration times h^2 (m) along the state y (a wall's: from the bead to its plane)
+  void spring_separation(std::size_t j, const double* y, const double* dydt, double h,
+                         Eigen::Vector3d& r, Eigen::Vector3d& u, Eigen::Vector3d& a) const;
+  // the history changes up to t taken into the springs and contacts
+  void settle_histories(double t);
+  static double stored_energy(const Contact& c);
+  // 1, or the share of the step h to cut it to, just past spring j's turn (amend_histories)
+  double turn_cut(std::size_t j, const numerics::ContactLaw& law,
+                  const numerics::internal::OnsetQuadrature& missed, double end_overlap,
+                  double h) const;
+  // the inelastic springs' part of amend_switches
+  double amend_histories(const State& start, const State& start_rate, State& end,
+                         const State& end_rate, double h);
   void take_step();
 
   MovingContacts& world_;
@@ -209,9 +229,8 @@ class MovingContacts::Group {
   // one pass, to the bit).
   std::vector<double> spring_reach_, spring_stiffness_;
   std::vector<double> gain_;  // members': T / m, a force to the state's w' (moving_contacts.hpp)
-  std::vector<std::int32_t> scanned_;  // of contacts_: the inelastic, whose events are searched
-  std::vector<std::int32_t> elastic_;  // of springs_: the elastic, whose peaks are tracked
-  std::vector<Peak> peaks_;            // by the springs' order
+  std::vector<Peak> peaks_;   // by the springs' order
+  std::vector<HistoryChange> history_changes_;  // of the step just taken, by time
   std::vector<Watch> watched_;
   std::unique_ptr<numerics::internal::RungeKuttaNystrom> dense_;
   std::vector<double> y_, probe_;
@@ -226,7 +245,6 @@ class MovingContacts::Group {
   Samples before_, after_, one_;
   double last_step_ = 0.0;
   bool fresh_ = true;  // restarted, no step taken since
-  std::size_t last_event_ = std::size_t(-1);
 };
 
 }  // namespace mimpact::granular

@@ -92,8 +92,8 @@ struct Collision {
   }
 };
 struct AmendedCollision : Collision {
-  void amend(const std::vector<double>& y0, std::vector<double>& y1, double h,
-             std::span<const std::size_t> switching) const {
+  void amend(const std::vector<double>& y0, const std::vector<double>&, std::vector<double>& y1,
+             const std::vector<double>&, double h, std::span<const std::size_t> switching) const {
     if (switching.empty()) return;
     const OnsetQuadrature missed = hertz_onset_quadrature(
         Eigen::Vector3d(y0[1] - y0[0], 0, 0), Eigen::Vector3d(h * (y0[3] - y0[2]), 0, 0),

@@ -27,6 +27,9 @@ class EmbeddedPair {
 
   // Marks the motion as changed: the next step must restart it.
   void invalidate() { started_ = false; }
+  // The right-hand side changed at the current state, which stands (a contact's law turned
+  // there): the next step forms its derivative anew rather than taking the last step's.
+  void refresh_derivative() { derivative_known_ = false; }
   bool started() const { return started_; }
 
   // One step of the motion from time(), rhs(y, dydt, t) its right-hand side: [previous time,

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+
+#include "mimpact/numerics/contact_law.hpp"
 
 namespace mimpact::numerics::internal {
 
@@ -32,7 +35,201 @@ struct OnsetQuadrature {
   // from the first), and of the force's magnitude (the contact's impulse)
   Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
   double magnitude = 0.0;
+  // A bi-stiffness contact's (e < 1) history within the step, in order: where (a share of the
+  // step) its overlap turned above the largest it had, which becomes its history (m), or where
+  // it opened (its overlap fell to `opening`), where its history becomes 0.
+  struct HistoryChange {
+    double s = 0.0, history = 0.0;
+  };
+  std::array<HistoryChange, 4> changes{};
+  std::size_t change_count = 0;
+  // N s / h: what the position weights missed of the force's moment about the step's end,
+  // integral over the step of F n (1 - s) ds - sum_i b_i F_i n_i (the positions err by h^2
+  // this over the mass; amended where the force jumps, as an e = 0 contact's at its turn)
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
 };
+
+// The separation (m) of two bodies over a step in s = (t - t0) / h, the Hermite interpolant of its
+// values r, rates times the step u = h r' and, if `quintic`, accelerations times its square
+// a = h^2 r'' at the step's ends (cubic: error O(h^4); quintic: O(h^6), as the Nystrom step's
+// own dense output).
+struct StepSeparation {
+  Eigen::Vector3d r0 = Eigen::Vector3d::Zero(), u0 = Eigen::Vector3d::Zero(),
+                  a0 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d r1 = Eigen::Vector3d::Zero(), u1 = Eigen::Vector3d::Zero(),
+                  a1 = Eigen::Vector3d::Zero();
+  bool quintic = false;
+
+  Eigen::Vector3d at(double s) const {
+    const double s2 = s * s, s3 = s2 * s;
+    if (!quintic)
+      return (2.0 * s3 - 3.0 * s2 + 1.0) * r0 + (s3 - 2.0 * s2 + s) * u0 +
+             (3.0 * s2 - 2.0 * s3) * r1 + (s3 - s2) * u1;
+    const double s4 = s3 * s, s5 = s4 * s;
+    return (1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5) * r0 +
+           (s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5) * u0 +
+           (0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5) * a0 +
+           (10.0 * s3 - 15.0 * s4 + 6.0 * s5) * r1 + (-4.0 * s3 + 7.0 * s4 - 3.0 * s5) * u1 +
+           (0.5 * s3 - s4 + 0.5 * s5) * a1;
+  }
+  // d/ds of at(s)
+  Eigen::Vector3d rate(double s) const {
+    const double s2 = s * s, s3 = s2 * s;
+    if (!quintic)
+      return (6.0 * s2 - 6.0 * s) * r0 + (3.0 * s2 - 4.0 * s + 1.0) * u0 +
+             (6.0 * s - 6.0 * s2) * r1 + (3.0 * s2 - 2.0 * s) * u1;
+    const double s4 = s3 * s;
+    return (-30.0 * s2 + 60.0 * s3 - 30.0 * s4) * (r0 - r1) +
+           (1.0 - 18.0 * s2 + 32.0 * s3 - 15.0 * s4) * u0 +
+           (s - 4.5 * s2 + 6.0 * s3 - 2.5 * s4) * a0 + (-12.0 * s2 + 28.0 * s3 - 15.0 * s4) * u1 +
+           (1.5 * s2 - 4.0 * s3 + 2.5 * s4) * a1;
+  }
+};
+
+// The same for the force of any contact law along a model of the separation, with its history: the
+// compliant law (contact_law.hpp: K delta^eta on loading, for e < 1 the stiffer curve from its
+// largest overlap on unloading) that the step's right-hand side took at its nodes with the
+// history `max_compression` (m) it began with, against the law as it is over the step, whose
+// history changes where the overlap turns above it and where it opens (falls to `opening`, m)
+// (docs/model.md, section 17). Besides a touch and a parting, the force's corners lie where the
+// overlap crosses the history (loading meets unloading) and the unloading curve's zero; the
+// model is integrated between all of them, each span from its corners by the change of
+// variable above, and the history's changes are returned.
+template <std::size_t Stages>
+OnsetQuadrature contact_step_quadrature(const StepSeparation& model, double reach,
+                                        const ContactLaw& law, double max_compression,
+                                        double opening, const std::array<double, Stages>& nodes,
+                                        const std::array<double, Stages>& weights,
+                                        const std::array<double, Stages>& position_weights) {
+  auto separation = [&](double s) { return model.at(s); };
+  auto overlap = [&](double s) { return reach - separation(s).norm(); };
+  const double e = law.restitution;
+  const bool hysteretic = e < 1.0;
+  const bool hertz = !hysteretic && law.exponent == 1.5;
+  struct Force {
+    Eigen::Vector3d vector = Eigen::Vector3d::Zero();
+    double magnitude = 0.0;
+  };
+  auto force = [&](double s, double history) {
+    const Eigen::Vector3d r = separation(s);
+    const double distance = r.norm(), delta = reach - distance;
+    Force f;
+    if (delta <= 0.0) return f;
+    // (an elastic Hertz force written as the right-hand side writes it, to its last bit)
+    f.magnitude =
+        hertz ? law.stiffness * delta * std::sqrt(delta) : hysteresis_force(law, delta, history);
+    f.vector = (f.magnitude / distance) * r;
+    return f;
+  };
+  OnsetQuadrature out;
+  constexpr int kSamples = 8;  // fine enough for the few corners a step's cubic may have
+  auto root = [](auto&& f, double a, double b, double fa, double fb) {
+    if (fb == 0.0) return b;
+    std::uintmax_t iterations = 100;
+    const auto [lo, hi] = boost::math::tools::toms748_solve(
+        f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(48), iterations);
+    return 0.5 * (lo + hi);
+  };
+  // the spans of one history, from its corners (where the overlap crosses a threshold)
+  using Gauss = boost::math::quadrature::gauss<double, 8>;
+  auto integrate_from = [&](double end, double length, double history) {
+    // (length < 0: the span ends at `end`)
+    const auto& x = Gauss::abscissa();
+    const auto& w = Gauss::weights();
+    for (std::size_t k = 0; k < x.size(); ++k)
+      for (const double sign : {-1.0, 1.0}) {
+        // u on [0, 1] (Gauss weight w / 2), ds = 2 |length| u du
+        const double u = 0.5 * (1.0 + sign * x[k]);
+        const double s = end + length * u * u;
+        const Force f = force(s, history);
+        out.impulse += w[k] * std::abs(length) * u * f.vector;
+        out.moment += (w[k] * std::abs(length) * u * (1.0 - s)) * f.vector;
+        out.magnitude += w[k] * std::abs(length) * u * f.magnitude;
+      }
+  };
+  auto integrate_part = [&](double from, double to, double history) {
+    std::array<double, 2> thresholds{0.0, -1.0};  // the force's zero, and loading's start
+    if (hysteretic && history > 0.0) thresholds = {history * (1.0 - e * e), history};
+    std::array<double, 2 + 2 * kSamples> corner{};  // ascending: the part's ends, then roots
+    std::array<bool, 2 + 2 * kSamples> touches{};
+    std::size_t count = 0;
+    corner[count++] = from;
+    double before = from, overlap_before = overlap(from);
+    for (int m = 1; m <= kSamples; ++m) {
+      const double s = from + (to - from) * double(m) / kSamples, overlap_here = overlap(s);
+      std::array<double, 2> found{};
+      std::size_t here = 0;
+      for (const double threshold : thresholds) {
+        if (threshold < 0.0 || (overlap_before > threshold) == (overlap_here > threshold)) continue;
+        found[here++] = root([&](double t) { return overlap(t) - threshold; }, before, s,
+                             overlap_before - threshold, overlap_here - threshold);
+      }
+      if (here == 2 && found[1] < found[0]) std::swap(found[0], found[1]);
+      for (std::size_t k = 0; k < here; ++k) {
+        touches[count] = true;
+        corner[count++] = found[k];
+      }
+      before = s;
+      overlap_before = overlap_here;
+    }
+    corner[count++] = to;
+    for (std::size_t k = 0; k + 1 < count; ++k) {
+      const double first = corner[k], last = corner[k + 1];
+      if (!(last > first) || force(0.5 * (first + last), history).magnitude == 0.0) continue;
+      if (touches[k] && touches[k + 1]) {
+        const double half = 0.5 * (last - first);
+        integrate_from(first, half, history);
+        integrate_from(last, -half, history);
+      } else if (touches[k + 1]) {
+        integrate_from(last, first - last, history);
+      } else {
+        integrate_from(first, last - first, history);
+      }
+    }
+  };
+  // the history's changes, each where its function first crosses from < 0 to >= 0 after the
+  // last: a turn, the separation's rate r . r' from closing to opening above the history; an
+  // opening, the overlap down to `opening` from a history
+  auto closing = [&](double s) { return separation(s).dot(model.rate(s)); };
+  auto opened = [&](double s) { return opening - overlap(s); };
+  // (`crossed`: f's own crossing is at `from`, the last change: the next needs f < 0 again)
+  auto first_crossing = [&](auto&& f, double from, bool crossed, auto&& accept) {
+    double before = from, value_before = crossed ? 0.0 : f(from);
+    for (int m = 1; m <= kSamples; ++m) {
+      const double s = from + (1.0 - from) * double(m) / kSamples, value_here = f(s);
+      if (value_before < 0.0 && value_here >= 0.0) {
+        const double at = root(f, before, s, value_before, value_here);
+        if (accept(at)) return at;
+      }
+      before = s;
+      value_before = value_here;
+    }
+    return 2.0;  // none
+  };
+  double from = 0.0, history = max_compression;
+  bool turned = false;  // the last change
+  while (hysteretic && out.change_count < out.changes.size()) {
+    const double turn = first_crossing(
+        closing, from, turned, [&](double at) { return overlap(at) > std::max(history, 0.0); });
+    const double open =
+        history > 0.0 ? first_crossing(opened, from, false, [](double) { return true; }) : 2.0;
+    const double next = std::min(turn, open);
+    if (next > 1.0) break;
+    integrate_part(from, next, history);
+    turned = next == turn;
+    history = turned ? overlap(turn) : 0.0;
+    out.changes[out.change_count++] = {.s = next, .history = history};
+    from = next;
+  }
+  integrate_part(from, 1.0, history);
+  for (std::size_t i = 0; i < Stages; ++i) {  // what the right-hand side took
+    const Force f = force(nodes[i], max_compression);
+    out.impulse -= weights[i] * f.vector;
+    out.magnitude -= weights[i] * f.magnitude;
+    out.moment -= position_weights[i] * f.vector;
+  }
+  return out;
+}
 
 // The separation (m) of the second sphere's centre from the first's at the step's start, r0,
 // and end, r1, and its rates times the step, u0 = h r0', u1 = h r1' (m); `reach` (m) the sum of
@@ -43,83 +240,9 @@ OnsetQuadrature hertz_onset_quadrature(const Eigen::Vector3d& r0, const Eigen::V
                                        double reach, double stiffness,
                                        const std::array<double, Stages>& nodes,
                                        const std::array<double, Stages>& weights) {
-  auto separation = [&](double s) -> Eigen::Vector3d {
-    const double s2 = s * s, s3 = s2 * s;
-    return (2.0 * s3 - 3.0 * s2 + 1.0) * r0 + (s3 - 2.0 * s2 + s) * u0 +
-           (3.0 * s2 - 2.0 * s3) * r1 + (s3 - s2) * u1;
-  };
-  auto overlap = [&](double s) { return reach - separation(s).norm(); };
-  struct Force {
-    Eigen::Vector3d vector = Eigen::Vector3d::Zero();
-    double magnitude = 0.0;
-  };
-  auto force = [&](double s) {
-    const Eigen::Vector3d r = separation(s);
-    const double distance = r.norm(), delta = reach - distance;
-    Force f;
-    if (delta <= 0.0) return f;
-    f.magnitude = stiffness * delta * std::sqrt(delta);
-    f.vector = (f.magnitude / distance) * r;
-    return f;
-  };
-  OnsetQuadrature out;
-  // a span where the spheres overlap, integrated in u from each end where they touch or part,
-  // with s = end +- length u^2: the force's (s - end)^(3/2) there becomes a smooth u^3, and
-  // Gauss-Legendre takes it to round-off; one end such (the other the step's), the whole span
-  // from it (8 forces), both, each half from its own (2 x 8)
-  using Gauss = boost::math::quadrature::gauss<double, 8>;
-  auto integrate_from = [&](double end, double length) {  // length < 0: the span ends at `end`
-    const auto& x = Gauss::abscissa();
-    const auto& w = Gauss::weights();
-    for (std::size_t k = 0; k < x.size(); ++k)
-      for (const double sign : {-1.0, 1.0}) {
-        // u on [0, 1] (Gauss weight w / 2), ds = 2 |length| u du
-        const double u = 0.5 * (1.0 + sign * x[k]);
-        const Force f = force(end + length * u * u);
-        out.impulse += w[k] * std::abs(length) * u * f.vector;
-        out.magnitude += w[k] * std::abs(length) * u * f.magnitude;
-      }
-  };
-  auto integrate_span = [&](double first, double last, bool first_touches, bool last_touches) {
-    if (first_touches && last_touches) {
-      const double half = 0.5 * (last - first);
-      integrate_from(first, half);
-      integrate_from(last, -half);
-    } else if (last_touches) {
-      integrate_from(last, first - last);
-    } else {
-      integrate_from(first, last - first);
-    }
-  };
-  // the overlap's sign changes, sampled finely enough for the few a step's cubic may have
-  constexpr int kSamples = 8;
-  double before = 0.0, overlap_before = overlap(0.0);
-  double span_start = overlap_before > 0.0 ? 0.0 : -1.0;
-  for (int m = 1; m <= kSamples; ++m) {
-    const double s = double(m) / kSamples, overlap_here = overlap(s);
-    if ((overlap_before > 0.0) != (overlap_here > 0.0)) {
-      std::uintmax_t iterations = 100;
-      const auto [lo, hi] = boost::math::tools::toms748_solve(
-          overlap, before, s, overlap_before, overlap_here,
-          boost::math::tools::eps_tolerance<double>(48), iterations);
-      const double root = 0.5 * (lo + hi);
-      if (overlap_here > 0.0) {
-        span_start = root;
-      } else {
-        integrate_span(span_start, root, span_start > 0.0, true);
-        span_start = -1.0;
-      }
-    }
-    before = s;
-    overlap_before = overlap_here;
-  }
-  if (span_start >= 0.0) integrate_span(span_start, 1.0, span_start > 0.0, false);
-  for (std::size_t i = 0; i < Stages; ++i) {
-    const Force f = force(nodes[i]);
-    out.impulse -= weights[i] * f.vector;
-    out.magnitude -= weights[i] * f.magnitude;
-  }
-  return out;
+  const ContactLaw hertz{.stiffness = stiffness, .exponent = 1.5, .restitution = 1.0};
+  return contact_step_quadrature(StepSeparation{.r0 = r0, .u0 = u0, .r1 = r1, .u1 = u1}, reach,
+                                 hertz, 0.0, 0.0, nodes, weights, std::array<double, Stages>{});
 }
 
 }  // namespace mimpact::numerics::internal

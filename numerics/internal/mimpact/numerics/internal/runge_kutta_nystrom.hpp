@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <limits>
 #include <span>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "mimpact/numerics/internal/embedded_pair.hpp"
@@ -32,13 +34,16 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   // Starts again from (t, y) with a first step of `first_step`: y's first `positions`
   // components are x, the next as many w (x' = velocity_scale w), the rest q. The steps
   // (step(), inherited) take rhs(y, dydt, t), which writes dydt's w and q parts from y's x part.
-  // An rhs that also has amend(y0, y1, h, switching) is handed every attempted step's end y1
-  // to amend, with the q components whose rates switched on or off within the step (zero at
-  // some of its stages, not at others): a contact force that began or ended there, whose
-  // quadrature the rhs may correct (onset_quadrature.hpp). The error estimate is the
-  // unamended pair's. `last_error` is the step-size controller's memory, the error ratio of
-  // the last step accepted (after_acceptance): kNoLastError where the motion starts afresh, or
-  // last_error() where it goes on.
+  // An rhs that also has amend(y0, dydt0, y1, dydt1, h, switching) is handed every attempted
+  // step's end y1 to amend, with the derivatives at both ends (dydt1 at y1 as the step formed
+  // it) and the q components whose rates switched on or off within the step (zero at some of
+  // its stages, not at others): a contact force that began or ended there, whose quadrature
+  // the rhs may correct (onset_quadrature.hpp). The error estimate is the unamended pair's.
+  // An amend that returns a double may ask for a shorter step instead: a share of h below 1
+  // rejects the attempt and tries that share of it next (a law that changes too sharply within
+  // the step to amend, which the shorter step ends just after). `last_error` is the step-size
+  // controller's memory, the error ratio of the last step accepted (after_acceptance): kNoLastError
+  // where the motion starts afresh, or last_error() where it goes on.
   static constexpr double kNoLastError = 1e-4;  // Hairer's start
   void restart(const State& y, double t, double first_step, std::size_t positions,
                double velocity_scale, double last_error = kNoLastError) {
@@ -49,6 +54,7 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
     kappa_ = velocity_scale;
     last_error_ = last_error;
     rejected_ = false;
+    cut_to_ = 0.0;
   }
   double last_error() const { return last_error_; }
 
@@ -92,6 +98,7 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   }
   double after_rejection(double h, double error) {
     rejected_ = true;
+    if (cut_to_ > 0.0) return std::exchange(cut_to_, 0.0);
     return h * std::max(0.9 * std::pow(error, -0.25), 0.2);
   }
   double after_acceptance(double h, double error) {
@@ -113,6 +120,7 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   double kappa_ = 1.0;
   double last_error_ = kNoLastError;  // of the last step accepted
   bool rejected_ = false;             // the last attempt was
+  double cut_to_ = 0.0;               // s: the step its amend asked for, or 0
 };
 
 // RKN4(3)4FM: nodes c, stage weights a (for x''), the fourth-order weights b (x) and bp (w, q),
@@ -127,7 +135,8 @@ constexpr double e1 = b1 - -7.0 / 150.0, e2 = b2 - 67.0 / 150.0, e3 = b3 - 3.0 /
                  e4 = 0.0 - -1.0 / 20.0;
 constexpr double ep1 = bp1 - 13.0 / 21.0, ep2 = bp2 - -20.0 / 27.0, ep3 = bp3 - 275.0 / 189.0,
                  ep4 = bp4 - -1.0 / 3.0;
-constexpr std::array<double, 4> nodes{0.0, c2, c3, 1.0}, velocity_weights{bp1, bp2, bp3, bp4};
+constexpr std::array<double, 4> nodes{0.0, c2, c3, 1.0}, velocity_weights{bp1, bp2, bp3, bp4},
+    position_weights{b1, b2, b3, 0.0};
 }  // namespace rkn43
 
 template <class Rhs>
@@ -170,7 +179,7 @@ double RungeKuttaNystrom::attempt(Rhs& rhs, double h) {
          kappa_ * w[i]);
   constexpr bool kAmends =
       requires(Rhs & r, const State& a, State& b, double s, std::span<const std::size_t> i) {
-    r.amend(a, b, s, i);
+    r.amend(a, a, b, a, s, i);
   };
   auto velocity_and_error = [&](std::size_t i) {
     add(i, h * (bp1 * k1[i] + bp2 * k2[i] + bp3 * k3[i] + bp4 * k4[i]));
@@ -187,7 +196,16 @@ double RungeKuttaNystrom::attempt(Rhs& rhs, double h) {
       switching_[switched] = i - 2 * p;
       switched += (k1[i] * k2[i] * k3[i] * k4[i] == 0.0) & (k1[i] + k2[i] + k3[i] + k4[i] > 0.0);
     }
-    rhs.amend(y, out, h, std::span<const std::size_t>(switching_.data(), switched));
+    const std::span<const std::size_t> switches(switching_.data(), switched);
+    if constexpr (std::is_same_v<decltype(rhs.amend(y, k1, out, k4, h, switches)), double>) {
+      const double share = rhs.amend(y, k1, out, k4, h, switches);
+      if (share < 1.0) {
+        cut_to_ = share * h;
+        return std::numeric_limits<double>::infinity();
+      }
+    } else {
+      rhs.amend(y, k1, out, k4, h, switches);
+    }
   } else {
     for (std::size_t i = 2 * p; i < n; ++i) velocity_and_error(i);
   }
