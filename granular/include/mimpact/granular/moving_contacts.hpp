@@ -82,9 +82,10 @@ struct MovingContactsStats {
 // nothing. The others are split into groups, the bodies linked by loaded contacts (and those
 // close enough to meet them within a window): each group is integrated on its own by
 // the Runge-Kutta-Nystrom pair RKN4(3)4FM (three forces a step: the forces depend on the
-// positions alone), with its own steps. Elastic contacts are smooth forces of the positions
-// and need no event; a group restarts only at its own events (a body it takes, an inelastic
-// contact joining, leaving, or turning to unload), located with dense output (TOMS 748). Groups
+// positions alone), with its own steps. Contacts are forces of the positions and need no event:
+// an inelastic one's turn to unload (its law's history) is found within the step and the step
+// amended there. A group restarts only where it takes a body flying freely that it touches,
+// located with dense output (TOMS 748). Groups
 // meet only at the ends of short windows (at most 0.6 of the quickest contact's duration): a
 // window in which two groups touched, or took the same body, is integrated again for them as one.
 class MovingContacts {
