@@ -5,9 +5,9 @@
 #include <tuple>
 
 #include "mimpact/common/error.hpp"
-#include "mimpact/numerics/internal/event_scan.hpp"
-#include "mimpact/numerics/internal/onset_quadrature.hpp"
-#include "mimpact/numerics/internal/root_bracketing.hpp"
+#include "mimpact/numerics/event_scan.hpp"
+#include "mimpact/numerics/onset_quadrature.hpp"
+#include "mimpact/numerics/root_bracketing.hpp"
 
 // One group's integration over a window: M x'' = sum of its loaded contacts' forces along the
 // current normals, the Runge-Kutta-Nystrom pair RKN4(3)4FM on (displacements from the last
@@ -15,7 +15,7 @@
 // section 17).
 namespace mimpact::granular {
 
-using plugins::internal::ContactEvent;
+using numerics::ContactEvent;
 
 namespace {
 
@@ -205,7 +205,7 @@ void MovingContacts::Group::restart(double t) {
     peaks_[j] = {.max_force = c.max_force, .time_of_max = c.time_of_max_force};
   }
   if (!dense_)
-    dense_ = std::make_unique<numerics::internal::RungeKuttaNystrom>(world_.options_.ode);
+    dense_ = std::make_unique<numerics::RungeKuttaNystrom>(world_.options_.ode);
   const StepStart from = step_start();
   dense_->restart(y_, t, from.step, std::size_t(d) * n, 1.0 / world_.time_scale_, from.last_error);
   fresh_ = true;
@@ -228,7 +228,7 @@ MovingContacts::Group::StepStart MovingContacts::Group::step_start() const {
     if (b.step_hint > 0.0) hints.emplace_back(b.step_hint, b.error_hint);
   }
   if (hints.empty())
-    return {world_.first_step_, numerics::internal::RungeKuttaNystrom::kNoLastError};
+    return {world_.first_step_, numerics::RungeKuttaNystrom::kNoLastError};
   const auto middle = hints.begin() + std::ptrdiff_t(hints.size() / 2);
   std::nth_element(hints.begin(), middle, hints.end());
   return {middle->first, middle->second};
@@ -417,7 +417,7 @@ void MovingContacts::Group::watch_gap(const Watch& w, double t, const double* y,
 // The member a watched body's entry reads, written into probe_ from the dense output at w's
 // time: an event search reads that, not the whole state.
 void MovingContacts::Group::probe_entry(std::size_t entry,
-                                        const numerics::internal::RungeKuttaNystrom::Weights& w) {
+                                        const numerics::RungeKuttaNystrom::Weights& w) {
   const std::size_t n = members_.size();
   const auto d = std::size_t(dimension_);
   for (std::size_t i = d * std::size_t(watched_[entry].member), end = i + d; i < end; ++i) {
@@ -438,7 +438,7 @@ void MovingContacts::Group::measure(double t, const std::vector<std::size_t>& en
       watch_gap(watched_[entries[k]], t, dense_->state().data(), samples.gap[k], samples.rate[k]);
     return;
   }
-  const numerics::internal::RungeKuttaNystrom::Weights w = dense_->weights_at(t);
+  const numerics::RungeKuttaNystrom::Weights w = dense_->weights_at(t);
   for (std::size_t k = 0; k < entries.size(); ++k) {
     probe_entry(entries[k], w);
     watch_gap(watched_[entries[k]], t, probe_.data(), samples.gap[k], samples.rate[k]);
@@ -450,7 +450,7 @@ void MovingContacts::Group::measure(double t, const std::vector<std::size_t>& en
 // reaches the threshold give or take the turn's depth (a dip that the cubic misses by its whole
 // depth is not a dip the step resolves).
 bool MovingContacts::Group::suspect(std::size_t k, double h,
-                                    const plugins::internal::Overlaps& overlaps) const {
+                                    const numerics::Overlaps& overlaps) const {
   const double g0 = start_samples_.gap[k], g1 = end_samples_.gap[k], r0 = start_samples_.rate[k],
                r1 = end_samples_.rate[k];
   // An open entry's one event is its gap reaching -overlaps.join. The cubic Hermite lies at most
@@ -459,9 +459,9 @@ bool MovingContacts::Group::suspect(std::size_t k, double h,
   // (gaps of round-off, rates of 1e-13 m/s) were half of every step's entries, each searched.
   if (std::min(g0, g1) - (8.0 / 27.0) * h * (std::abs(r0) + std::abs(r1)) > -overlaps.join)
     return false;
-  const plugins::internal::ContactWatch ends{
+  const numerics::ContactWatch ends{
       .gap_before = g0, .gap_after = g1, .rate_before = r0, .rate_after = r1};
-  if (plugins::internal::classify(ends, overlaps).kind != ContactEvent::none) return true;
+  if (numerics::classify(ends, overlaps).kind != ContactEvent::none) return true;
   if (r0 * r1 < 0.0) {
     const HermiteTurn turn = hermite_turn(g0, r0, g1, r1, h);
     return turn.gap - (std::min(g0, g1) - turn.gap) <= -overlaps.join;
@@ -473,11 +473,11 @@ bool MovingContacts::Group::suspect(std::size_t k, double h,
 }
 
 // The earliest event of the watched entries in [a, b] of the current step: a body flying freely
-// touched (plugins::internal::classify, as the compliant integrator); located by TOMS 748.
+// touched (numerics::classify, as the compliant integrator); located by TOMS 748.
 bool MovingContacts::Group::next_event(double a, double b, Event& event) {
   if (watched_.empty()) return false;
   const numerics::OdeOptions& ode = world_.options_.ode;
-  const plugins::internal::Overlaps overlaps{.join = world_.options_.overlap_resolution,
+  const numerics::Overlaps overlaps{.join = world_.options_.overlap_resolution,
                                              .leave = 0.5 * world_.options_.overlap_resolution};
   // every entry at the segment's ends, its start kept from the segment before
   if (entries_sampled_at_ != a) measure(a, entries_, start_samples_);
@@ -492,21 +492,21 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
   one_.gap.resize(1);
   one_.rate.resize(1);
   auto locate = [&](double t0, double t1, const Samples& s0, const Samples& s1,
-                    std::vector<numerics::internal::Crossing>& found) {
+                    std::vector<numerics::Crossing>& found) {
     for (std::size_t k = 0; k < suspects_.size(); ++k) {
       const std::size_t entry = suspects_[k];
-      const plugins::internal::ContactWatch w{.gap_before = s0.gap[k],
+      const numerics::ContactWatch w{.gap_before = s0.gap[k],
                                               .gap_after = s1.gap[k],
                                               .rate_before = s0.rate[k],
                                               .rate_after = s1.rate[k]};
-      const plugins::internal::Classified crossed = plugins::internal::classify(w, overlaps);
+      const numerics::Classified crossed = numerics::classify(w, overlaps);
       if (crossed.kind == ContactEvent::none) continue;
       if (crossed.at_start) {
         found.push_back({long(entry), int(crossed.kind), t0});
         continue;
       }
       auto value = [&](double gap, double rate) {
-        return plugins::internal::event_function(crossed.kind, gap, rate, overlaps);
+        return numerics::event_function(crossed.kind, gap, rate, overlaps);
       };
       const numerics::Bracket bracket = numerics::narrow_crossing(
           [&](double t) {
@@ -518,7 +518,7 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
       found.push_back({long(entry), int(crossed.kind), bracket.upper});
     }
   };
-  const auto found = numerics::internal::scan_events(
+  const auto found = numerics::scan_events(
       a, b, ode.samples_per_step, ode.event_tolerance, before_, after_,
       [&](double t, Samples& s) { measure(t, suspects_, s); }, locate);
   if (found.empty()) return false;
@@ -600,7 +600,7 @@ void MovingContacts::Group::handle(const Event& event) {
 double MovingContacts::Group::amend_switches(const State& start, const State& start_rate,
                                              State& end, const State& end_rate, double h,
                                              std::span<const std::size_t> switching) {
-  using numerics::internal::rkn43::nodes, numerics::internal::rkn43::velocity_weights;
+  using numerics::rkn43::nodes, numerics::rkn43::velocity_weights;
   const auto d = std::size_t(dimension_);
   const std::size_t velocities = d * members_.size();
   double* impulses = end.data() + 2 * velocities;
@@ -619,7 +619,7 @@ double MovingContacts::Group::amend_switches(const State& start, const State& st
     Eigen::Vector3d r0, u0, r1, u1, unused;
     spring_separation(j, start.data(), nullptr, h, r0, u0, unused);
     spring_separation(j, end.data(), nullptr, h, r1, u1, unused);
-    const numerics::internal::OnsetQuadrature missed = numerics::internal::hertz_onset_quadrature(
+    const numerics::OnsetQuadrature missed = numerics::hertz_onset_quadrature(
         r0, u0, r1, u1, spring_reach_[j], spring_stiffness_[j], nodes, velocity_weights);
     for (std::size_t k = 0; k < d; ++k) {
       end[velocities + d * a + k] -= gain_[a] * h * missed.impulse(k);
@@ -635,8 +635,8 @@ double MovingContacts::Group::amend_switches(const State& start, const State& st
 // at e = 0 left 1.3e-6 of V off at tolerance 1e-6 (the quintic: 1.2e-10).
 double MovingContacts::Group::amend_histories(const State& start, const State& start_rate,
                                               State& end, const State& end_rate, double h) {
-  using numerics::internal::rkn43::nodes, numerics::internal::rkn43::velocity_weights,
-      numerics::internal::rkn43::position_weights;
+  using numerics::rkn43::nodes, numerics::rkn43::velocity_weights,
+      numerics::rkn43::position_weights;
   const auto d = std::size_t(dimension_);
   const std::size_t velocities = d * members_.size();
   const double leave = 0.5 * world_.options_.overlap_resolution;
@@ -645,7 +645,7 @@ double MovingContacts::Group::amend_histories(const State& start, const State& s
   for (const SpringAside& aside : springs_aside_) {
     if (aside.law.effective_restitution() >= 1.0) continue;
     const auto j = std::size_t(aside.spring);
-    numerics::internal::StepSeparation model{.quintic = true};
+    numerics::StepSeparation model{.quintic = true};
     spring_separation(j, start.data(), start_rate.data(), h, model.r0, model.u0, model.a0);
     spring_separation(j, end.data(), end_rate.data(), h, model.r1, model.u1, model.a1);
     const double reach = spring_reach_[j], overlap0 = reach - model.r0.norm(),
@@ -659,7 +659,7 @@ double MovingContacts::Group::amend_histories(const State& start, const State& s
     if (closing0 == closing1 && !crosses(history * (1.0 - e * e)) &&
         !(history > 0.0 && (crosses(history) || crosses(leave))))
       continue;
-    const numerics::internal::OnsetQuadrature missed = numerics::internal::contact_step_quadrature(
+    const numerics::OnsetQuadrature missed = numerics::contact_step_quadrature(
         model, reach, aside.law, history, leave, nodes, velocity_weights, position_weights);
     const bool changed = missed.change_count > 0;
     const double share = turn_cut(j, aside.law, missed, overlap1, h);
@@ -704,7 +704,7 @@ double MovingContacts::Group::amend_histories(const State& start, const State& s
 // (R = 0.18, 1.8e-5), 6.5e-7 at 1e-10 and e = 0.01 (R = 0.076, 2.2e-6), 2.2e-5 at 1e-3 and
 // e = 0.5 (R = 0.068, 8.4e-5). A turn in the step's last 5 % is amended.
 double MovingContacts::Group::turn_cut(std::size_t j, const numerics::ContactLaw& law,
-                                       const numerics::internal::OnsetQuadrature& missed,
+                                       const numerics::OnsetQuadrature& missed,
                                        double end_overlap, double h) const {
   constexpr double kCutBefore = 0.95, kPastTheTurn = 1.01;
   const auto* const last = missed.changes.begin() + missed.change_count;

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "mimpact/granular/moving_contacts.hpp"
-#include "mimpact/numerics/internal/onset_quadrature.hpp"
-#include "mimpact/numerics/internal/runge_kutta_nystrom.hpp"
-#include "mimpact/plugins/internal/contact_events.hpp"
+#include "mimpact/numerics/onset_quadrature.hpp"
+#include "mimpact/numerics/runge_kutta_nystrom.hpp"
+#include "mimpact/numerics/contact_events.hpp"
 
 namespace mimpact::granular {
 
@@ -164,10 +164,10 @@ class MovingContacts::Group {
   // gap and rate of contact c, or of watched pair w at time t, along the state y
   void contact_gap(const Contact& c, const double* y, double& gap, double& rate) const;
   void watch_gap(const Watch& w, double t, const double* y, double& gap, double& rate) const;
-  void probe_entry(std::size_t entry, const numerics::internal::RungeKuttaNystrom::Weights& w);
+  void probe_entry(std::size_t entry, const numerics::RungeKuttaNystrom::Weights& w);
   // the entries' gaps and rates at t, in their order
   void measure(double t, const std::vector<std::size_t>& entries, Samples& samples);
-  bool suspect(std::size_t k, double h, const plugins::internal::Overlaps& overlaps) const;
+  bool suspect(std::size_t k, double h, const numerics::Overlaps& overlaps) const;
   bool next_event(double a, double b, Event& event);
   void move_to(double t);
   void handle(const Event& event);
@@ -178,7 +178,7 @@ class MovingContacts::Group {
   // grow as the group times its contacts). Only the reported peak forces depend on it, not the
   // motion. Kept in peaks_, by the springs' order, and folded into the contacts by move_to.
   void track_peaks(double t0, double t1);
-  using State = numerics::internal::RungeKuttaNystrom::State;
+  using State = numerics::RungeKuttaNystrom::State;
   // The group's motion as the Nystrom step reads it: its right-hand side, and the amendment at
   // the contacts that switched within a step.
   struct Motion {
@@ -201,7 +201,7 @@ class MovingContacts::Group {
   static double stored_energy(const Contact& c);
   // 1, or the share of the step h to cut it to, just past spring j's turn (amend_histories)
   double turn_cut(std::size_t j, const numerics::ContactLaw& law,
-                  const numerics::internal::OnsetQuadrature& missed, double end_overlap,
+                  const numerics::OnsetQuadrature& missed, double end_overlap,
                   double h) const;
   // the inelastic springs' part of amend_switches
   double amend_histories(const State& start, const State& start_rate, State& end,
@@ -232,7 +232,7 @@ class MovingContacts::Group {
   std::vector<Peak> peaks_;   // by the springs' order
   std::vector<HistoryChange> history_changes_;  // of the step just taken, by time
   std::vector<Watch> watched_;
-  std::unique_ptr<numerics::internal::RungeKuttaNystrom> dense_;
+  std::unique_ptr<numerics::RungeKuttaNystrom> dense_;
   std::vector<double> y_, probe_;
   // The event search: every entry's gap and rate at the current segment's ends (the start kept
   // from the segment before, at entries_sampled_at_: a segment's end is the next one's start), and

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "mimpact/common/error.hpp"
-#include "mimpact/numerics/internal/dense_output.hpp"
-#include "mimpact/numerics/internal/event_scan.hpp"
-#include "mimpact/numerics/internal/root_bracketing.hpp"
+#include "mimpact/numerics/dense_output.hpp"
+#include "mimpact/numerics/event_scan.hpp"
+#include "mimpact/numerics/root_bracketing.hpp"
 
 namespace mimpact::numerics {
 
@@ -70,7 +70,7 @@ class LzbAdaptiveIntegrator::Impact {
            ImpactSampler& sampler, ImpactObserver* observer, LzbResult& result);
 
  private:
-  using State = internal::DenseOutput::State;
+  using State = DenseOutput::State;
 
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
                const LawTable& laws, const LzbAdaptiveOptions& options);
@@ -81,7 +81,7 @@ class LzbAdaptiveIntegrator::Impact {
   void derivative(const State& y, State& dydt);
   void watch(double t, Watched& values);
   void locate(double t0, double t1, const Watched& before, const Watched& after,
-              std::vector<internal::Crossing>& found);
+              std::vector<Crossing>& found);
   double watched_value(std::size_t member, int kind, const Watched& values) const;
   // the same for one member at the state y: its velocity from its column of H alone
   double member_velocity(const State& y, std::size_t member) const;
@@ -104,7 +104,7 @@ class LzbAdaptiveIntegrator::Impact {
   }
   void end_segment(const State& y);
   void account_work(const State& y);
-  void apply(const std::vector<internal::Crossing>& crossings, double t);
+  void apply(const std::vector<Crossing>& crossings, double t);
   bool settled(const State& y);
   void sample_until(double t, ImpactObserver& observer);
   void notify(double t, const State* y, ImpactObserver& observer);
@@ -121,7 +121,7 @@ class LzbAdaptiveIntegrator::Impact {
   // the turn.
   void begin_within_steps_segment();
   void locate_turns(double t0, double t1, const Watched& before, const Watched& after);
-  double member_velocity_at(const internal::DenseOutput::Weights& w, std::size_t member) const;
+  double member_velocity_at(const DenseOutput::Weights& w, std::size_t member) const;
   // the peaks and closings of the step [t0, t1] just taken; true if one changed the state (then
   // y_settled_ holds it)
   bool settle_turns(double t0, double t1);
@@ -142,7 +142,7 @@ class LzbAdaptiveIntegrator::Impact {
   }
 
   const Eigen::SparseMatrix<double>* H_ = nullptr;
-  internal::DenseOutput ode_;
+  DenseOutput ode_;
   double velocity_tolerance_ = 0.0;  // tolerance * V (m/s)
   double sample_interval_ = 0.0;
   std::int64_t steps_ = 0, contact_steps_ = 0;
@@ -439,7 +439,7 @@ double LzbAdaptiveIntegrator::Impact::watched_value(std::size_t member, int kind
 // Every member is on the near side of its switches when a segment starts, up to rounding.
 void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& before,
                                            const Watched& after,
-                                           std::vector<internal::Crossing>& found) {
+                                           std::vector<Crossing>& found) {
   if (within_steps_) {
     locate_turns(t0, t1, before, after);
     return;
@@ -478,7 +478,7 @@ void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& 
   }
 }
 
-double LzbAdaptiveIntegrator::Impact::member_velocity_at(const internal::DenseOutput::Weights& w,
+double LzbAdaptiveIntegrator::Impact::member_velocity_at(const DenseOutput::Weights& w,
                                                          std::size_t member) const {
   return column_velocity(member,
                          [&](std::size_t other) { return ode_.component_at(w, active_ + other); });
@@ -532,7 +532,7 @@ bool LzbAdaptiveIntegrator::Impact::settle_member(double t0, double t1,
   const double scale = delta_scale_[j];
   using Local = std::array<double, 2>;  // delta_j / scale, P_j's increment / impulse scale
   auto alone = [&](const Local& x, Local& dxdt, double t) {
-    const internal::DenseOutput::Weights w = ode_.weights_at(t);
+    const DenseOutput::Weights w = ode_.weights_at(t);
     const double u = member_velocity_at(w, p) + self_mobility_[j] * impulse_scale_[j] *
                                                     (x[1] - ode_.component_at(w, active_ + p));
     dxdt[0] = -u * (u > 0.0 ? expansion_rate_[j] : 1.0) / scale;
@@ -611,9 +611,9 @@ void LzbAdaptiveIntegrator::Impact::end_segment(const State& y) {
   }
 }
 
-void LzbAdaptiveIntegrator::Impact::apply(const std::vector<internal::Crossing>& crossings,
+void LzbAdaptiveIntegrator::Impact::apply(const std::vector<Crossing>& crossings,
                                           double t) {
-  for (const internal::Crossing& crossing : crossings) {
+  for (const Crossing& crossing : crossings) {
     const Index j = members_[std::size_t(crossing.index)];
     switch (crossing.kind) {
       case join:
@@ -739,11 +739,11 @@ void LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
     ode_.step(rhs);
     ++steps_;
     contact_steps_ += std::int64_t(active_);
-    const std::vector<internal::Crossing> found = internal::scan_events(
+    const std::vector<Crossing> found = scan_events(
         step_start, ode_.time(), kSamplesPerStep + 1, 0.0, before_, after_,
         [this](double time, Watched& v) { watch(time, v); },
         [this](double t0, double t1, const Watched& b, const Watched& a,
-               std::vector<internal::Crossing>& f) { locate(t0, t1, b, a, f); });
+               std::vector<Crossing>& f) { locate(t0, t1, b, a, f); });
     if (found.empty()) {
       t = ode_.time();
       const bool changed = within_steps_ && settle_turns(step_start, t);

@@ -5,9 +5,9 @@
 
 #include "compliant_state.hpp"
 #include "mimpact/common/error.hpp"
-#include "mimpact/numerics/internal/dense_output.hpp"
-#include "mimpact/numerics/internal/event_scan.hpp"
-#include "mimpact/numerics/internal/root_bracketing.hpp"
+#include "mimpact/numerics/dense_output.hpp"
+#include "mimpact/numerics/event_scan.hpp"
+#include "mimpact/numerics/root_bracketing.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
 
 namespace mimpact::plugins {
@@ -15,7 +15,7 @@ namespace mimpact::plugins {
 using kernel::Index;
 using kernel::MatrixXd;
 using kernel::VectorXd;
-using numerics::internal::Crossing;
+using numerics::Crossing;
 
 using compliant::Body;
 using compliant::Contact;
@@ -23,10 +23,10 @@ using compliant::GapSamples;
 using compliant::JacobianEntry;
 using compliant::kNever;
 using compliant::linear_gap;
-using internal::ContactEvent;
+using numerics::ContactEvent;
 
 CompliantIntegrator::State::State(const numerics::OdeOptions& options)
-    : dense(std::make_unique<numerics::internal::DenseOutput>(options)) {}
+    : dense(std::make_unique<numerics::DenseOutput>(options)) {}
 CompliantIntegrator::State::~State() = default;
 
 CompliantIntegrator::CompliantIntegrator(CompliantOptions options) : options_(options) {
@@ -263,8 +263,8 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
 
 void CompliantIntegrator::take_step() {
   State& s = *state_;
-  s.dense->step([this](const numerics::internal::DenseOutput::State& y,
-                       numerics::internal::DenseOutput::State& dydt,
+  s.dense->step([this](const numerics::DenseOutput::State& y,
+                       numerics::DenseOutput::State& dydt,
                        double t) { evaluate(t, y.data(), dydt.data()); });
   const double t = s.dense->time();
   if (s.dense->steps() > options_.max_steps) {
@@ -282,7 +282,7 @@ void CompliantIntegrator::take_step() {
                            "precision resolve (check the speeds and stiffnesses, or loosen the "
                            "tolerance)"));
   }
-  const numerics::internal::DenseOutput::State& now = s.dense->state();
+  const numerics::DenseOutput::State& now = s.dense->state();
   if (!std::all_of(now.begin(), now.end(), [](double x) { return std::isfinite(x); }))
     throw Error("compliant integrator: the state is not finite at t = " + to_text(t) +
                 " s; speeds, forces or stiffnesses are out of the range double precision carries");
@@ -315,33 +315,33 @@ void CompliantIntegrator::measure(double t, std::span<const Index> contacts,
 
 bool CompliantIntegrator::next_event(double a, double b, Event& event) {
   State& s = *state_;
-  const internal::Overlaps overlaps{.join = s.join_overlap, .leave = s.leave_overlap};
+  const numerics::Overlaps overlaps{.join = s.join_overlap, .leave = s.leave_overlap};
   auto watch = [&](double t, GapSamples& samples) {
     measure(t, s.watched, samples.gap, samples.rate);
   };
   s.event_gap.resize(1);
   s.event_rate.resize(1);
-  // each watched contact's event over [t0, t1] (internal::classify), located to the event
+  // each watched contact's event over [t0, t1] (numerics::classify), located to the event
   // tolerance
   auto locate = [&](double t0, double t1, const GapSamples& before, const GapSamples& after,
                     std::vector<Crossing>& found) {
     for (std::size_t w = 0; w < s.watched.size(); ++w) {
       const Index j = s.watched[w];
-      internal::ContactWatch watched;
+      numerics::ContactWatch watched;
       watched.joined = s.contact(j).joined;
       watched.may_freeze = options_.frozen_gaps && s.contact(j).has_closed;
       watched.gap_before = before.gap[w];
       watched.gap_after = after.gap[w];
       watched.rate_before = before.rate[w];
       watched.rate_after = after.rate[w];
-      const internal::Classified crossed = internal::classify(watched, overlaps);
+      const numerics::Classified crossed = numerics::classify(watched, overlaps);
       if (crossed.kind == ContactEvent::none) continue;
       if (crossed.at_start) {
         found.push_back({long(j), int(crossed.kind), t0});
         continue;
       }
       auto value = [&](double gap, double rate) {
-        return internal::event_function(crossed.kind, gap, rate, overlaps);
+        return numerics::event_function(crossed.kind, gap, rate, overlaps);
       };
       const Index one[] = {j};
       const numerics::Bracket bracket = numerics::narrow_crossing(
@@ -358,7 +358,7 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
       found.push_back({long(j), int(crossed.kind), bracket.upper});
     }
   };
-  const std::vector<Crossing> found = numerics::internal::scan_events(
+  const std::vector<Crossing> found = numerics::scan_events(
       a, b, options_.ode.samples_per_step, options_.ode.event_tolerance, s.before, s.after, watch,
       locate);
   double earliest = kNever;

@@ -5,7 +5,7 @@
 // located and handled, the restarts of the integration), compliant_motion.cpp (the moving-body
 // set: who is integrated, who flies freely, joins computed in closed form), compliant_ledger.cpp
 // (the contact laws' force and energy, the energy ledger); the events' classification is a pure
-// function (mimpact/plugins/internal/contact_events.hpp).
+// function (mimpact/numerics/contact_events.hpp).
 
 #include <cstdint>
 #include <functional>
@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "mimpact/plugins/compliant_integrator.hpp"
-#include "mimpact/plugins/internal/contact_events.hpp"
+#include "mimpact/numerics/contact_events.hpp"
 #include "mimpact/plugins/internal/mass_block.hpp"
 
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 class DenseOutput;  // Dormand-Prince 5(4): only compliant_integrator.cpp compiles it
 }
 
@@ -85,7 +85,7 @@ struct CompliantIntegrator::State {
   explicit State(const numerics::OdeOptions& options);
   ~State();
 
-  std::unique_ptr<numerics::internal::DenseOutput> dense;
+  std::unique_ptr<numerics::DenseOutput> dense;
   std::vector<double> y, probe;  // the integrated state and a workspace
   bool linear = true;
   double join_overlap = 0.0, leave_overlap = 0.0;  // m
@@ -130,7 +130,7 @@ struct CompliantIntegrator::State {
 
 struct CompliantIntegrator::Event {
   kernel::Index contact = -1;
-  internal::ContactEvent kind = internal::ContactEvent::none;
+  numerics::ContactEvent kind = numerics::ContactEvent::none;
   double time = 0.0;
 };
 

@@ -7,13 +7,13 @@
 
 #include "contact_dynamics.hpp"
 #include "mimpact/common/error.hpp"
-#include "mimpact/numerics/internal/dense_output.hpp"
-#include "mimpact/numerics/internal/event_scan.hpp"
-#include "mimpact/numerics/internal/root_bracketing.hpp"
+#include "mimpact/numerics/dense_output.hpp"
+#include "mimpact/numerics/event_scan.hpp"
+#include "mimpact/numerics/root_bracketing.hpp"
 
 namespace mimpact::plugins {
 
-using numerics::internal::Crossing;
+using numerics::Crossing;
 
 // What the event search watches at one time: every contact's gap (m) and normal velocity
 // (m/s), and the force holding each persistent contact (N).
@@ -26,8 +26,8 @@ struct EventDrivenIntegrator::Watched {
 // event search's workspace.
 struct EventDrivenIntegrator::Motion {
   ContactDynamics dynamics;
-  std::optional<numerics::internal::DenseOutput> dense;
-  numerics::internal::DenseOutput::State y, probe;
+  std::optional<numerics::DenseOutput> dense;
+  numerics::DenseOutput::State y, probe;
   VectorXd q, v, a;  // right-hand side workspace
   VectorXd q_probe, v_probe;
   Watched before, after;
@@ -105,7 +105,7 @@ kernel::StepReport EventDrivenIntegrator::advance(double target) {
 double EventDrivenIntegrator::known_until(kernel::StepReport& report) {
   if (free_flight_) return std::numeric_limits<double>::infinity();
   if (!motion_->dense || !motion_->dense->started()) restart_motion();
-  numerics::internal::DenseOutput& dense = *motion_->dense;
+  numerics::DenseOutput& dense = *motion_->dense;
   while (dense.time() <= time_) {
     dense.step([this](const std::vector<double>& y, std::vector<double>& dydt, double t) {
       derivative(y, dydt, t);
@@ -268,7 +268,7 @@ bool EventDrivenIntegrator::search(double a, double b, Event& event) {
       found.push_back({persistent[p], detaching, crossing.upper});
     }
   };
-  const std::vector<Crossing> found = numerics::internal::scan_events(
+  const std::vector<Crossing> found = numerics::scan_events(
       a, b, options_.ode.samples_per_step, tolerance, m.before, m.after, watch_at, locate);
   if (found.empty()) return false;
   event = {found.front().time, {}, {}};

@@ -1,4 +1,4 @@
-#include "mimpact/numerics/internal/onset_quadrature.hpp"
+#include "mimpact/numerics/onset_quadrature.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,12 +9,12 @@
 #include <span>
 #include <vector>
 
-#include "mimpact/numerics/internal/runge_kutta_nystrom.hpp"
+#include "mimpact/numerics/runge_kutta_nystrom.hpp"
 
 // The quadrature of a Hertz force across its onset within a step (onset_quadrature.hpp):
 // against the closed form and an independent adaptive quadrature, and the order it gives the
 // Nystrom step across a collision's first touch.
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 namespace {
 
 constexpr double kReach = 0.01;        // m: two beads of 5 mm
@@ -155,4 +155,4 @@ TEST(OnsetQuadrature, RaisesTheNystromStepsOrderAcrossATouch) {
 }
 
 }  // namespace
-}  // namespace mimpact::numerics::internal
+}  // namespace mimpact::numerics

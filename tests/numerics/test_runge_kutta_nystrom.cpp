@@ -1,4 +1,4 @@
-#include "mimpact/numerics/internal/runge_kutta_nystrom.hpp"
+#include "mimpact/numerics/runge_kutta_nystrom.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 // The Runge-Kutta-Nystrom pair of the moving geometry on problems with known solutions: its
 // order, its dense output against the exact motion, its peaks of a rate within a step, and its
 // error control on an eccentric orbit.
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 namespace {
 
 using State = RungeKuttaNystrom::State;
@@ -139,4 +139,4 @@ TEST(RungeKuttaNystrom, RatePeakFindsTheMaximumWithinAStepToOrderFour) {
 }
 
 }  // namespace
-}  // namespace mimpact::numerics::internal
+}  // namespace mimpact::numerics

@@ -11,7 +11,7 @@
 
 #include "mimpact/numerics/contact_law.hpp"
 
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 
 // A Hertz force K delta^(3/2) between two spheres switches on where they touch (or off where
 // they part) within a step, and there its second derivative is unbounded: a Runge-Kutta step's
@@ -245,4 +245,4 @@ OnsetQuadrature hertz_onset_quadrature(const Eigen::Vector3d& r0, const Eigen::V
                                  hertz, 0.0, 0.0, nodes, weights, std::array<double, Stages>{});
 }
 
-}  // namespace mimpact::numerics::internal
+}  // namespace mimpact::numerics

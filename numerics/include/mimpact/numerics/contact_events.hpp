@@ -2,10 +2,10 @@
 
 // The events of the compliant integration, classified by a pure function of what a contact's
 // gap and rate do over one part of a step: tested on its own
-// (tests/plugins/test_contact_events.cpp), used by CompliantIntegrator to decide which
+// (tests/numerics/test_contact_events.cpp), used by the compliant integrator and the moving geometry to decide which
 // crossings to locate.
 
-namespace mimpact::plugins::internal {
+namespace mimpact::numerics {
 
 // What ends a segment of the integration at a contact.
 // turning: a joined contact's compression ends; reanchoring: an open contact stops separating
@@ -70,4 +70,4 @@ constexpr double event_function(ContactEvent kind, double gap, double rate,
   }
 }
 
-}  // namespace mimpact::plugins::internal
+}  // namespace mimpact::numerics

@@ -6,10 +6,10 @@
 #include <cstddef>
 #include <vector>
 
-#include "mimpact/numerics/internal/embedded_pair.hpp"
+#include "mimpact/numerics/embedded_pair.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 
 // Dormand-Prince 5(4) with error control and dense output on a flat state (Dormand & Prince,
 // J. Comput. Appl. Math. 6, 1980; the continuous extension of Hairer, Norsett & Wanner, Solving
@@ -168,4 +168,4 @@ inline DenseOutput::Weights DenseOutput::weights_at(double t) const {
            h * (A * b5 + C * X5), h * (A * b6 - C * X6), h * (B + C * X7)}};
 }
 
-}  // namespace mimpact::numerics::internal
+}  // namespace mimpact::numerics

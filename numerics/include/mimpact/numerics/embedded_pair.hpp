@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 
 // An embedded Runge-Kutta pair with error control and dense output on a flat state: what it
 // keeps between steps (the state and its derivative at both ends of the last step) and its
@@ -117,4 +117,4 @@ void EmbeddedPair<Derived>::step(Rhs&& rhs) {
   ++steps_;
 }
 
-}  // namespace mimpact::numerics::internal
+}  // namespace mimpact::numerics

@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 
 // An event found on a motion: which watched quantity crossed (an index of the caller's), of
 // what kind (the caller's code), and when.
@@ -45,4 +45,4 @@ std::vector<Crossing> scan_events(double a, double b, int samples, double tolera
   return found;
 }
 
-}  // namespace mimpact::numerics::internal
+}  // namespace mimpact::numerics

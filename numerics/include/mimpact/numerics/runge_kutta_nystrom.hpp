@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
-#include "mimpact/numerics/internal/embedded_pair.hpp"
+#include "mimpact/numerics/embedded_pair.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 
-namespace mimpact::numerics::internal {
+namespace mimpact::numerics {
 
 // The embedded Runge-Kutta-Nystrom pair RKN4(3)4FM of Dormand, El-Mikkawy & Prince (IMA J.
 // Numer. Anal. 7, 1987, table 3) with error control and dense output, for a flat state
@@ -316,4 +316,4 @@ inline double RungeKuttaNystrom::interpolate(const Weights& w, std::size_t i) co
          w.integral[3] * h * f1[i];
 }
 
-}  // namespace mimpact::numerics::internal
+}  // namespace mimpact::numerics

@@ -3,11 +3,11 @@
 // past it where the interval starts happens there, and one that crosses nothing is no event;
 // the event function is > 0 before the crossing and <= 0 after, the sign convention the root
 // finder needs.
-#include "mimpact/plugins/internal/contact_events.hpp"
+#include "mimpact/numerics/contact_events.hpp"
 
 #include <gtest/gtest.h>
 
-namespace mimpact::plugins::internal {
+namespace mimpact::numerics {
 namespace {
 
 constexpr Overlaps kOverlaps{.join = 1e-12, .leave = 0.5e-12};  // m
@@ -75,4 +75,4 @@ TEST(ContactEvents, AFrozenGapIsReanchoredWhereTheContactStopsSeparating) {
 }
 
 }  // namespace
-}  // namespace mimpact::plugins::internal
+}  // namespace mimpact::numerics
