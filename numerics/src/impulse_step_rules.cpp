@@ -22,8 +22,10 @@ double step_duration(double delta_p, double e0, double e1, double force, double 
   return length / force * factor;
 }
 
-double phase_end(double u0, double du, double e0, double dp, double f, double level,
-                 bool released_at_once) {
+double phase_end(const PhaseStep& step) {
+  const double u0 = step.u, du = step.du, e0 = step.energy, dp = step.delta_p;
+  const double f = step.expansion_rate, level = step.release_level;
+  const bool released_at_once = step.drops_at_turn;
   if (u0 < 0.0 && u0 + du > 0.0) {
     const double crossing = -u0 / du;
     if (crossing >= kSmallestCut) return crossing;

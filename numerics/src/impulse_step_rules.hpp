@@ -74,7 +74,15 @@ constexpr double kSmallestCut = 1e-6;
 // released (0, or (1 - e^2) W_c for mono-stiffness). Within a step u is linear in s,
 // u0 + du s, and the work trapezoidal, so E(s) = E0 - f dp (u0 s + du s^2/2) in expansion,
 // with f = 1/e^2 for bi-stiffness and 1 for mono-stiffness.
-double phase_end(double u0, double du, double e0, double dp, double f, double level,
-                 bool released_at_once);
+struct PhaseStep {
+  double u = 0.0;                // u0: the contact's velocity at the step's start (m/s)
+  double du = 0.0;               // its change over the whole step (m/s)
+  double energy = 0.0;           // E0 (J)
+  double delta_p = 0.0;          // dp, the contact's impulse over the step (N s)
+  double expansion_rate = 1.0;   // f
+  double release_level = 0.0;    // J
+  bool drops_at_turn = false;    // e = 0: released where the step's work is zero
+};
+double phase_end(const PhaseStep& step);
 
 }  // namespace mimpact::numerics::detail

@@ -118,18 +118,21 @@ class LzbImpulseIntegrator : public ImpactIntegrator {
                const LawTable& laws);
   void notify(ImpactObserver* observer, std::int64_t step, double time, double principal);
 
+  // per contact, reused from impact to impact: the step loop allocates nothing
+  struct Contacts {
+    std::vector<double> tolerance_u, tolerance_energy;  // the thresholds of taking part
+    std::vector<double> u, u_old, energy, impulse, step_impulse, force, force_hat;
+    std::vector<double> impulse_carry;  // the low-order bits the sum of impulse has lost
+    std::vector<double> compression_work, max_force, time_of_max, work;
+    std::unique_ptr<bool[]> in_impact;  // flag_capacity entries
+    std::size_t flag_capacity = 0;
+    std::vector<Eigen::Index> active;        // contacts taking part, the first ones listed
+    std::vector<Eigen::Index> merge_buffer;  // where contacts that join are merged in order
+  };
+
   LzbOptions options_;
-  // per contact: the thresholds of taking part
-  std::vector<double> tolerance_u_, tolerance_energy_;
-  // per contact: state
-  std::vector<double> u_, u_old_, energy_, impulse_, step_impulse_, force_, force_hat_;
-  std::vector<double> impulse_carry_;  // the low-order bits the sum of impulse_ has lost
-  std::vector<double> compression_work_, max_force_, time_of_max_, work_;
-  std::unique_ptr<bool[]> in_impact_;  // flag_capacity_ entries, reused
-  std::size_t flag_capacity_ = 0;
-  std::vector<Eigen::Index> active_;        // contacts taking part, the first ones listed
-  std::vector<Eigen::Index> merge_buffer_;  // where contacts that join are merged in order
-  std::size_t initially_active_ = 0;        // how many take part at the start
+  Contacts contacts_;
+  std::size_t initially_active_ = 0;  // how many take part at the start
   Eigen::MatrixXd dense_;                   // H, for impacts among few contacts
 };
 
