@@ -3,7 +3,7 @@
 // delta_p that puts their post-impact velocities within 1e-4 m/s of the extrapolated answer
 // (scripts/packing_scale.py measures it: the error grows with the packing, whose impact lasts
 // longer); the adaptive LZB at tolerance 1e-4, whose elastic switches stay within its steps
-// (docs/model.md, section 10), so that its work follows the contacts reached (located, they
+// (docs/design/adaptive_lzb.md), so that its work follows the contacts reached (located, they
 // made it grow as their square: 13 s at 1 024 beads). The asynchronous steps
 // (docs/model.md, section 14) kick each contact at its own pace, so that their work follows
 // the contacts the wave reaches. Counters: the steps, the contacts

@@ -207,7 +207,7 @@ times the same impacts). The error is against the impulse steps Richardson-extra
 their two finest runs. The contacts per step grow with the contacts the wave reaches, but the
 impact lasts longer in a larger packing and the wake behind the front stays loaded, so the
 impulse steps' time at a given accuracy grows faster than the contacts reached. The adaptive
-LZB's follows them: its elastic switches stay within its steps (docs/model.md, section 10).
+LZB's follows them: its elastic switches stay within its steps (docs/design/adaptive_lzb.md).
 
 {chr(10).join(rows)}
 """
@@ -245,8 +245,8 @@ beads struck at 1 m/s, in one benchmark run (`/usr/bin/python3 bench/packing_wor
 contact that carried force): each code's time for an RMS error of the velocities at the end
 time, against mimpact at tolerance 1e-10, interpolated between its runs (mimpact's at two
 tolerances a decade, LAMMPS's at steps a factor 2 apart). This machine's speed
-drifts by up to half again over minutes and the study reads each point once; docs/model.md
-section 17 gives the points around 1e-6 run five times each.
+drifts by up to half again over minutes and the study reads each point once;
+docs/design/moving_geometry.md, "Cost", gives the points around 1e-6 run five times each.
 
 {chr(10).join(rows)}
 """

@@ -187,7 +187,7 @@ def report(sizes, wakes):
             f"delta_p = {r['delta_p']:g} N s, {r['wall_time']:.1f} s" if r else
             f"none of delta_p >= {ASYNCHRONOUS_DELTA_P[-1]:g}"))
     lines += ["", f"The adaptive LZB at tolerance {TOLERANCE:g}, whose elastic switches stay within"
-              " its steps (docs/model.md, section 10), per contact reached and ms of the"
+              " its steps (docs/design/adaptive_lzb.md), per contact reached and ms of the"
               " impact:", ""]
     for size in sizes:
         r = next(r for r in size["runs"] if r["method"] == "adaptive LZB")

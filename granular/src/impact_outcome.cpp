@@ -238,7 +238,7 @@ CompliantRun simulate_moving(const ContactModel& model, const CompliantSpec& spe
   // The Nystrom pair's steps are set by the contacts' impulses since their group's last restart,
   // small numbers held to the absolute tolerance: a tenth of the tolerance's share of the
   // impact's overlap rather than a hundredth takes 8 to 29 % fewer body steps at equal accuracy
-  // (docs/model.md, section 17).
+  // (docs/design/moving_geometry.md).
   options.ode.absolute_tolerance = 10.0 * tolerances.absolute;
   options.ode.event_tolerance = 1e-13;
   // A contact left out below an overlap r for a window (a quarter of a contact's duration)

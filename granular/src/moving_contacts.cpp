@@ -8,8 +8,9 @@
 
 #include "mimpact/common/error.hpp"
 #include "moving_group.hpp"
+#include "moving_world.hpp"
 
-// The windows of the moving-geometry integration (docs/model.md, section 17): groups formed
+// The windows of the moving-geometry integration (docs/design/moving_geometry.md): groups formed
 // from the loaded contacts, collisions of bodies flying freely, the groups integrated each on
 // its own, checked against each other at the window's end, merged and integrated again where
 // they met, then committed.
@@ -58,21 +59,17 @@ double meeting_time(const Eigen::Vector3d& between, const Eigen::Vector3d& relat
 MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::Vector3d> velocity,
                                const std::vector<std::pair<std::int32_t, std::int32_t>>& closed,
                                MovingContactsOptions options)
-    : geometry_(geometry),
-      options_((validate(options, "moving contacts"), options)),
-      lists_(geometry, options.skin > 0.0 ? options.skin : 0.2 * geometry.radius.minCoeff()),
-      bodies_(std::size_t(geometry.body_count())),
-      contacts_of_(bodies_.size()) {
+    : world_(std::make_unique<MovingWorld>(geometry, options)) {
   double energy = 0.0;
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    bodies_[b].x = bodies_[b].anchor = geometry.position[b];
-    bodies_[b].v = velocity[b];
-    bodies_[b].inverse_mass = 1.0 / geometry.mass(Eigen::Index(b));
+  for (std::size_t b = 0; b < world_->bodies.size(); ++b) {
+    world_->bodies[b].x = world_->bodies[b].anchor = geometry.position[b];
+    world_->bodies[b].v = velocity[b];
+    world_->bodies[b].inverse_mass = 1.0 / geometry.mass(Eigen::Index(b));
     energy += 0.5 * geometry.mass(Eigen::Index(b)) * velocity[b].squaredNorm();
     if (velocity[b].squaredNorm() > 0.0) note_moving(std::int32_t(b));
   }
-  for (const auto& [first, second] : closed) contact_id(first, second);
-  speed_bound_ = std::sqrt(2.0 * energy / geometry.mass.minCoeff());
+  for (const auto& [first, second] : closed) world_->contact_id(first, second);
+  world_->speed_bound = std::sqrt(2.0 * energy / geometry.mass.minCoeff());
   // the quickest contact: the stiffest pair of the lightest bodies at twice the fastest speed,
   // unloading at once if any law is inelastic
   double stiffness = 0.0;
@@ -85,7 +82,7 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
     note_law(geometry.bead_law(b, b));
     for (std::size_t w = 0; w < geometry.walls.size(); ++w) note_law(geometry.wall_law(b, w));
   }
-  const double eta = geometry.shape.exponent, closing = 2.0 * speed_bound_;
+  const double eta = geometry.shape.exponent, closing = 2.0 * world_->speed_bound;
   const double overlap = std::pow(
       (1.0 + eta) * 0.5 * geometry.mass.minCoeff() * closing * closing / (2.0 * 2.0 * stiffness),
       1.0 / (1.0 + eta));
@@ -96,7 +93,7 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
   // that the groups find it (merge_groups_that_met); and no body leaves its list's ball within
   // it. A window lasts about eight steps of its largest group, within [0.5 overlap / closing,
   // that bound], or longer where one group integrates it (next_windows)
-  list_bound_ = 0.25 * lists_.skin() / speed_bound_;
+  list_bound_ = 0.25 * world_->lists.skin() / world_->speed_bound;
   const double quickest_contact = (elastic ? 3.9 : 1.95) * overlap / closing;
   longest_window_ = std::min(0.6 * quickest_contact, list_bound_);
   shortest_window_ = std::min(0.5 * overlap / closing, list_bound_);
@@ -115,65 +112,48 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
                 to_text(largest_coordinate) +
                 " m): double precision cannot resolve them where the bodies are; the frozen "
                 "geometry (compliant.geometry \"frozen\") or the LZB impact can");
-  first_step_ = 1e-3 * overlap / closing;
-  time_scale_ = overlap / closing;
-  mass_scale_ = geometry.mass.minCoeff();
+  world_->first_step = 1e-3 * overlap / closing;
+  world_->time_scale = overlap / closing;
+  world_->mass_scale = geometry.mass.minCoeff();
 }
 
 MovingContacts::~MovingContacts() = default;
 
-std::int32_t MovingContacts::find_contact_id(std::int32_t first, std::int32_t second) const {
-  if (second >= 0 && second < first) std::swap(first, second);
-  for (const auto& [other, id] : contacts_of_[std::size_t(first)])
-    if (other == second) return id;
-  return -1;
-}
+const std::vector<MovingContact>& MovingContacts::contacts() const { return world_->contacts; }
 
-std::int32_t MovingContacts::contact_id(std::int32_t first, std::int32_t second) {
-  if (second >= 0 && second < first) std::swap(first, second);
-  const std::int32_t known = find_contact_id(first, second);
-  if (known >= 0) return known;
-  MovingContact c;
-  c.first = first;
-  c.second = second;
-  c.law = second >= 0 ? geometry_.bead_law(first, second)
-                      : geometry_.wall_law(first, std::size_t(-1 - second));
-  const std::int32_t id = std::int32_t(contacts_.size());
-  contacts_.push_back(c);
-  contacts_of_[std::size_t(first)].emplace_back(second, id);
-  return id;
-}
+const MovingContactsStats& MovingContacts::stats() const { return world_->stats; }
 
 Eigen::Vector3d MovingContacts::position(Eigen::Index body) const {
-  return bodies_[std::size_t(body)].position_at(time_);
+  return world_->bodies[std::size_t(body)].position_at(time_);
 }
 Eigen::Vector3d MovingContacts::velocity(Eigen::Index body) const {
-  return bodies_[std::size_t(body)].v;
+  return world_->bodies[std::size_t(body)].v;
 }
 
 double MovingContacts::kinetic_energy() const {
   double energy = 0.0;
-  for (const Body& b : bodies_) energy += 0.5 * b.v.squaredNorm() / b.inverse_mass;
+  for (const MovingBody& b : world_->bodies) energy += 0.5 * b.v.squaredNorm() / b.inverse_mass;
   return energy;
 }
 
 double MovingContacts::stored_energy() const {
   double energy = 0.0;
-  for (std::int32_t id : loaded_ids_) energy += contacts_[std::size_t(id)].stored_energy;
+  for (std::int32_t id : world_->loaded_ids)
+    energy += world_->contacts[std::size_t(id)].stored_energy;
   return energy;
 }
 
 bool MovingContacts::ended() const {
-  if (!loaded_ids_.empty()) return false;
+  if (!world_->loaded_ids.empty()) return false;
   for (std::int32_t i : moving_) {
-    const Body& a = bodies_[std::size_t(i)];
+    const MovingBody& a = world_->bodies[std::size_t(i)];
     const Eigen::Vector3d x = a.position_at(time_);
-    for (std::int32_t k : lists_.bodies_near(i)) {
-      const Body& b = bodies_[std::size_t(k)];
+    for (std::int32_t k : world_->lists.bodies_near(i)) {
+      const MovingBody& b = world_->bodies[std::size_t(k)];
       if ((b.position_at(time_) - x).dot(b.v - a.v) < 0.0) return false;
     }
-    for (std::int32_t w : lists_.walls_near(i))
-      if (geometry_.walls[std::size_t(w)].normal.dot(a.v) < 0.0) return false;
+    for (std::int32_t w : world_->lists.walls_near(i))
+      if (world_->geometry.walls[std::size_t(w)].normal.dot(a.v) < 0.0) return false;
   }
   return true;
 }
@@ -182,7 +162,8 @@ double MovingContacts::advance(double target) {
   while (time_ < target && !ended()) {
     double end = std::min(target, time_ + window_);
     double extended = std::min(target, time_ + extended_window_);
-    if (loaded_ids_.empty()) end = extended = std::min(target, std::max(end, next_meeting(target)));
+    if (world_->loaded_ids.empty())
+      end = extended = std::min(target, std::max(end, next_meeting(target)));
     if (!(end > time_))
       throw Error("moving contacts: a window of " + to_text(window_) +
                   " s no longer moves t = " + to_text(time_) +
@@ -198,15 +179,16 @@ double MovingContacts::advance(double target) {
 // them may leave its list's ball.
 double MovingContacts::next_meeting(double target) const {
   double fastest = 0.0;
-  for (std::int32_t i : moving_) fastest = std::max(fastest, bodies_[std::size_t(i)].v.norm());
-  double horizon = std::min(target, time_ + 0.25 * lists_.skin() / fastest) - time_;
+  for (std::int32_t i : moving_)
+    fastest = std::max(fastest, world_->bodies[std::size_t(i)].v.norm());
+  double horizon = std::min(target, time_ + 0.25 * world_->lists.skin() / fastest) - time_;
   for (std::int32_t i : moving_) {
-    const Body& a = bodies_[std::size_t(i)];
-    for (std::int32_t k : lists_.bodies_near(i)) {
-      const Body& b = bodies_[std::size_t(k)];
-      horizon =
-          std::min(horizon, meeting_time(b.position_at(time_) - a.position_at(time_), b.v - a.v,
-                                         geometry_.radius(i) + geometry_.radius(k), horizon));
+    const MovingBody& a = world_->bodies[std::size_t(i)];
+    for (std::int32_t k : world_->lists.bodies_near(i)) {
+      const MovingBody& b = world_->bodies[std::size_t(k)];
+      horizon = std::min(
+          horizon, meeting_time(b.position_at(time_) - a.position_at(time_), b.v - a.v,
+                                world_->geometry.radius(i) + world_->geometry.radius(k), horizon));
     }
   }
   return time_ + horizon;
@@ -230,7 +212,7 @@ double MovingContacts::next_meeting(double target) const {
 // sixteen steps a window doubled FCC 20^3's body steps at 3e-4, with 511 and 954 restarts).
 std::pair<double, double> MovingContacts::next_windows() const {
   constexpr double kWindowSteps = 8.0;
-  const Group* largest = nullptr;
+  const MovingGroup* largest = nullptr;
   int count = 0;
   for (const auto& group : groups_)
     if (group) {
@@ -240,25 +222,25 @@ std::pair<double, double> MovingContacts::next_windows() const {
   if (!largest) return {shortest_window_, shortest_window_};  // a group that starts steps short
   const double steps = kWindowSteps * largest->last_step();
   const double window = std::clamp(steps, shortest_window_, longest_window_);
-  return {window,
-          count == 1 ? std::clamp(steps, shortest_window_, std::min(3.0 * time_scale_, list_bound_))
-                     : window};
+  return {window, count == 1 ? std::clamp(steps, shortest_window_,
+                                          std::min(3.0 * world_->time_scale, list_bound_))
+                             : window};
 }
 
-MovingContacts::Group& MovingContacts::new_group() {
-  groups_.push_back(std::make_unique<Group>(*this, std::int32_t(groups_.size())));
+MovingGroup& MovingContacts::new_group() {
+  groups_.push_back(std::make_unique<MovingGroup>(*world_, std::int32_t(groups_.size())));
   return *groups_.back();
 }
 
-std::unique_ptr<MovingContacts::Group> MovingContacts::take_previous_group(
+std::unique_ptr<MovingGroup> MovingContacts::take_previous_group(
     const std::vector<std::int32_t>& members) {
   // votes_ is all zeros between calls: only the groups voted for are counted and reset
   votes_.resize(previous_groups_.size(), 0);
   std::int32_t best = -1;
   std::vector<std::int32_t> voted;
   for (std::int32_t body : members) {
-    const Body& b = bodies_[std::size_t(body)];
-    if (b.last_window != stats_.windows - 1 || !previous_groups_[std::size_t(b.last_group)])
+    const MovingBody& b = world_->bodies[std::size_t(body)];
+    if (b.last_window != world_->stats.windows - 1 || !previous_groups_[std::size_t(b.last_group)])
       continue;
     if (votes_[std::size_t(b.last_group)]++ == 0) voted.push_back(b.last_group);
     if (best < 0 || votes_[std::size_t(b.last_group)] > votes_[std::size_t(best)])
@@ -279,7 +261,7 @@ void MovingContacts::run_window(double end, double extended) {
   const auto count =
       std::count_if(groups_.begin(), groups_.end(), [](const auto& g) { return bool(g); });
   if (count == 1 && meetings.empty()) {
-    if (extended > end) ++stats_.extended_windows;
+    if (extended > end) ++world_->stats.extended_windows;
     end = extended;
   } else {
     std::erase_if(meetings, [&](const Meeting& m) { return m.time > end; });
@@ -295,22 +277,23 @@ void MovingContacts::run_window(double end, double extended) {
       }
     if (!merge_groups_that_met()) break;
   }
-  loaded_ids_.clear();
+  world_->loaded_ids.clear();
   std::int64_t in_motion = 0;
   for (const auto& group : groups_) {
     if (!group) continue;
     in_motion += std::int64_t(group->members().size());
-    stats_.largest_group = std::max(stats_.largest_group, std::int64_t(group->members().size()));
+    world_->stats.largest_group =
+        std::max(world_->stats.largest_group, std::int64_t(group->members().size()));
     for (std::int32_t body : group->members()) note_moving(body);
     group->commit();
   }
-  stats_.most_bodies_in_motion = std::max(stats_.most_bodies_in_motion, in_motion);
+  world_->stats.most_bodies_in_motion = std::max(world_->stats.most_bodies_in_motion, in_motion);
   time_ = end;
-  ++stats_.windows;
+  ++world_->stats.windows;
 }
 
 void MovingContacts::note_moving(std::int32_t body) {
-  Body& b = bodies_[std::size_t(body)];
+  MovingBody& b = world_->bodies[std::size_t(body)];
   if (b.listed_moving) return;
   b.listed_moving = true;
   moving_.push_back(body);
@@ -318,14 +301,15 @@ void MovingContacts::note_moving(std::int32_t body) {
 
 // Bodies that may leave their list's ball before `end` make their lists again now.
 void MovingContacts::refresh_lists(double end) {
-  const double half_skin = 0.5 * lists_.skin();
+  const double half_skin = 0.5 * world_->lists.skin();
   for (std::int32_t i : moving_) {
-    const Body& b = bodies_[std::size_t(i)];
+    const MovingBody& b = world_->bodies[std::size_t(i)];
     const Eigen::Vector3d x = b.position_at(time_);
-    const double speed = std::max(b.v.norm(), speed_bound_);
-    if ((x - lists_.anchor(i)).norm() + speed * (end - time_) > half_skin) lists_.refresh(i, x);
+    const double speed = std::max(b.v.norm(), world_->speed_bound);
+    if ((x - world_->lists.anchor(i)).norm() + speed * (end - time_) > half_skin)
+      world_->lists.refresh(i, x);
   }
-  stats_.list_refreshes = lists_.refreshes();
+  world_->stats.list_refreshes = world_->lists.refreshes();
 }
 
 // The groups at the window's start: the bodies linked by loaded contacts, those close enough
@@ -335,39 +319,39 @@ void MovingContacts::refresh_lists(double end) {
 // first alone, it made the partition, and so the steps, depend on the bodies' numbering, and a
 // mirror strike asymmetric to the tolerance.
 void MovingContacts::form_groups(double end) {
-  if (loaded_ids_.empty()) return;
+  if (world_->loaded_ids.empty()) return;
   // each body once (slot, -1 between windows, marks it: its index in `linked`), in memory order
   std::vector<std::int32_t> linked;
   auto note = [&](std::int32_t body) {
-    if (bodies_[std::size_t(body)].slot != -1) return;
-    bodies_[std::size_t(body)].slot = 0;
+    if (world_->bodies[std::size_t(body)].slot != -1) return;
+    world_->bodies[std::size_t(body)].slot = 0;
     linked.push_back(body);
   };
-  for (std::int32_t id : loaded_ids_) {
-    const MovingContact& c = contacts_[std::size_t(id)];
+  for (std::int32_t id : world_->loaded_ids) {
+    const MovingContact& c = world_->contacts[std::size_t(id)];
     note(c.first);
     if (!c.wall()) note(c.second);
   }
   std::sort(linked.begin(), linked.end());
   const std::size_t loaded_count = linked.size();
   for (std::size_t i = 0; i < loaded_count; ++i)
-    bodies_[std::size_t(linked[i])].slot = std::int32_t(i);
+    world_->bodies[std::size_t(linked[i])].slot = std::int32_t(i);
   // the pairs that may meet within the window: two loaded bodies, or a loaded one and a body of
   // its halo (numbered after the loaded ones as it is found)
   const double window = end - time_;
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   for (std::size_t l = 0; l < loaded_count; ++l) {
     const std::int32_t i = linked[l];
-    const Body& a = bodies_[std::size_t(i)];
+    const MovingBody& a = world_->bodies[std::size_t(i)];
     const double speed = a.v.norm();
-    for (std::int32_t k : lists_.bodies_near(i)) {
-      Body& b = bodies_[std::size_t(k)];
+    for (std::int32_t k : world_->lists.bodies_near(i)) {
+      MovingBody& b = world_->bodies[std::size_t(k)];
       const bool loaded = b.slot >= 0 && std::size_t(b.slot) < loaded_count;
       if (loaded && k < i) continue;  // the pair once
       // apart by more than the radii and the reach: compared squared, a square root less a pair
       const double reach = 2.0 * (speed + b.v.norm()) * window;
-      const double apart = geometry_.radius(i) + geometry_.radius(k) +
-                           (loaded ? reach : reach + options_.overlap_resolution);
+      const double apart = world_->geometry.radius(i) + world_->geometry.radius(k) +
+                           (loaded ? reach : reach + world_->options.overlap_resolution);
       if ((b.position_at(time_) - a.x).squaredNorm() >= apart * apart) continue;
       if (!loaded && b.slot < 0) {
         b.slot = std::int32_t(linked.size());
@@ -377,17 +361,18 @@ void MovingContacts::form_groups(double end) {
     }
   }
   link_halo_meetings(window, loaded_count, linked, pairs);
-  for (std::int32_t id : loaded_ids_) {
-    const MovingContact& c = contacts_[std::size_t(id)];
+  for (std::int32_t id : world_->loaded_ids) {
+    const MovingContact& c = world_->contacts[std::size_t(id)];
     if (!c.wall())
-      pairs.emplace_back(bodies_[std::size_t(c.first)].slot, bodies_[std::size_t(c.second)].slot);
+      pairs.emplace_back(world_->bodies[std::size_t(c.first)].slot,
+                         world_->bodies[std::size_t(c.second)].slot);
   }
   Components components(linked.size());
   for (const auto& [p, q] : pairs) components.join(p, q);
   std::vector<std::vector<std::int32_t>> members(linked.size());
   for (std::int32_t i : linked)
-    members[std::size_t(components.find(bodies_[std::size_t(i)].slot))].push_back(i);
-  for (std::int32_t i : linked) bodies_[std::size_t(i)].slot = -1;
+    members[std::size_t(components.find(world_->bodies[std::size_t(i)].slot))].push_back(i);
+  for (std::int32_t i : linked) world_->bodies[std::size_t(i)].slot = -1;
   // The largest groups choose first which group of the last window they go on as (the one most
   // of their bodies came from), so that a front's group keeps its contacts: chosen in the
   // components' order, a few bodies parted from it took it first, and the front's group of the
@@ -398,7 +383,7 @@ void MovingContacts::form_groups(double end) {
   std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t p, std::size_t q) {
     return members[p].size() > members[q].size();
   });
-  std::vector<std::unique_ptr<Group>> carried(members.size());
+  std::vector<std::unique_ptr<MovingGroup>> carried(members.size());
   for (std::size_t c : by_size)
     if (!members[c].empty()) carried[c] = take_previous_group(members[c]);
   for (std::size_t c = 0; c < members.size(); ++c) {
@@ -423,17 +408,17 @@ void MovingContacts::form_groups(double end) {
 void MovingContacts::link_halo_meetings(double window, std::size_t loaded_count,
                                         std::vector<std::int32_t>& linked,
                                         std::vector<std::pair<std::int32_t, std::int32_t>>& pairs) {
-  const double resolution = options_.overlap_resolution;
+  const double resolution = world_->options.overlap_resolution;
   for (std::size_t l = loaded_count; l < linked.size(); ++l) {  // linked grows as bodies join
     const std::int32_t i = linked[l];
-    const Body& a = bodies_[std::size_t(i)];
+    const MovingBody& a = world_->bodies[std::size_t(i)];
     const Eigen::Vector3d x = a.position_at(time_);
-    for (std::int32_t k : lists_.bodies_near(i)) {
-      Body& b = bodies_[std::size_t(k)];
+    for (std::int32_t k : world_->lists.bodies_near(i)) {
+      MovingBody& b = world_->bodies[std::size_t(k)];
       if (b.slot >= 0 && std::size_t(b.slot) < loaded_count) continue;  // paired by its reach
-      const double t =
-          meeting_time(b.position_at(time_) - x, b.v - a.v,
-                       geometry_.radius(i) + geometry_.radius(k) - resolution, 2.0 * window);
+      const double t = meeting_time(
+          b.position_at(time_) - x, b.v - a.v,
+          world_->geometry.radius(i) + world_->geometry.radius(k) - resolution, 2.0 * window);
       if (!std::isfinite(t)) continue;
       if (b.slot < 0) {
         b.slot = std::int32_t(linked.size());
@@ -447,24 +432,24 @@ void MovingContacts::link_halo_meetings(double window, std::size_t loaded_count,
 std::vector<MovingContacts::Meeting> MovingContacts::free_meetings(double end) const {
   std::vector<Meeting> meetings;
   const double horizon = end - time_;
-  const double resolution = options_.overlap_resolution;
+  const double resolution = world_->options.overlap_resolution;
   for (std::int32_t i : moving_) {
-    const Body& a = bodies_[std::size_t(i)];
+    const MovingBody& a = world_->bodies[std::size_t(i)];
     if (a.owner >= 0) continue;
     const Eigen::Vector3d x = a.position_at(time_);
-    for (std::int32_t k : lists_.bodies_near(i)) {
-      const Body& b = bodies_[std::size_t(k)];
+    for (std::int32_t k : world_->lists.bodies_near(i)) {
+      const MovingBody& b = world_->bodies[std::size_t(k)];
       if (b.owner >= 0 || (k < i && b.listed_moving)) continue;
-      const double t =
-          meeting_time(b.position_at(time_) - x, b.v - a.v,
-                       geometry_.radius(i) + geometry_.radius(k) - resolution, horizon);
+      const double t = meeting_time(
+          b.position_at(time_) - x, b.v - a.v,
+          world_->geometry.radius(i) + world_->geometry.radius(k) - resolution, horizon);
       if (std::isfinite(t)) meetings.push_back({time_ + t, i, k});
     }
-    for (std::int32_t w : lists_.walls_near(i)) {
-      const Plane& wall = geometry_.walls[std::size_t(w)];
+    for (std::int32_t w : world_->lists.walls_near(i)) {
+      const Plane& wall = world_->geometry.walls[std::size_t(w)];
       const double closing = -wall.normal.dot(a.v);
       if (closing <= 0.0) continue;
-      const double gap = wall.normal.dot(x - wall.point) - geometry_.radius(i) + resolution;
+      const double gap = wall.normal.dot(x - wall.point) - world_->geometry.radius(i) + resolution;
       const double t = std::max(0.0, gap / closing);
       if (t <= horizon) meetings.push_back({time_ + t, i, -1 - w});
     }
@@ -482,7 +467,7 @@ void MovingContacts::form_collision_groups(const std::vector<Meeting>& meetings)
   // the bodies that meet, numbered by slot (-1 between windows for a body flying freely)
   std::vector<std::int32_t> meeting;
   auto number = [&](std::int32_t body) {
-    Body& b = bodies_[std::size_t(body)];
+    MovingBody& b = world_->bodies[std::size_t(body)];
     if (b.slot >= 0) return b.slot;
     b.slot = std::int32_t(meeting.size());
     meeting.push_back(body);
@@ -498,12 +483,12 @@ void MovingContacts::form_collision_groups(const std::vector<Meeting>& meetings)
   std::vector<const Meeting*> earliest(meeting.size(), nullptr);
   std::vector<std::vector<std::int32_t>> members(meeting.size());
   for (const Meeting& m : meetings) {
-    const std::int32_t root = linked.find(bodies_[std::size_t(m.first)].slot);
+    const std::int32_t root = linked.find(world_->bodies[std::size_t(m.first)].slot);
     if (!earliest[std::size_t(root)]) earliest[std::size_t(root)] = &m;
   }
   for (std::int32_t body : meeting)
-    members[std::size_t(linked.find(bodies_[std::size_t(body)].slot))].push_back(body);
-  for (std::int32_t body : meeting) bodies_[std::size_t(body)].slot = -1;
+    members[std::size_t(linked.find(world_->bodies[std::size_t(body)].slot))].push_back(body);
+  for (std::int32_t body : meeting) world_->bodies[std::size_t(body)].slot = -1;
   for (std::size_t root = 0; root < meeting.size(); ++root) {
     if (members[root].empty()) continue;
     const Meeting& first = *earliest[root];
@@ -517,18 +502,18 @@ void MovingContacts::form_collision_groups(const std::vector<Meeting>& meetings)
 bool MovingContacts::merge_groups_that_met() {
   Components met(groups_.size());
   bool any = false;
-  const double resolution = options_.overlap_resolution;
+  const double resolution = world_->options.overlap_resolution;
   for (const auto& group : groups_) {
     if (!group) continue;
     const auto& members = group->members();
     for (std::size_t m = 0; m < members.size(); ++m) {
       const std::int32_t i = members[m];
       const Eigen::Vector3d x = group->final_position(std::int32_t(m));
-      for (std::int32_t k : lists_.bodies_near(i)) {
-        const Body& b = bodies_[std::size_t(k)];
+      for (std::int32_t k : world_->lists.bodies_near(i)) {
+        const MovingBody& b = world_->bodies[std::size_t(k)];
         if (b.owner < 0 || b.owner == group->id()) continue;
         const double gap = (groups_[std::size_t(b.owner)]->final_position(b.slot) - x).norm() -
-                           geometry_.radius(i) - geometry_.radius(k);
+                           world_->geometry.radius(i) - world_->geometry.radius(k);
         if (gap < -resolution) {
           met.join(group->id(), b.owner);
           any = true;
@@ -554,9 +539,9 @@ bool MovingContacts::merge_groups_that_met() {
       members.insert(members.end(), mine.begin(), mine.end());
       groups_[std::size_t(g)]->release();
     }
-    std::unique_ptr<Group> merged = std::move(groups_[std::size_t(largest)]);
+    std::unique_ptr<MovingGroup> merged = std::move(groups_[std::size_t(largest)]);
     for (std::int32_t g : set) groups_[std::size_t(g)].reset();
-    stats_.redone_groups += std::int64_t(set.size());
+    world_->stats.redone_groups += std::int64_t(set.size());
     groups_.push_back(std::move(merged));
     groups_.back()->carry_on(std::int32_t(groups_.size() - 1), start, members);
   }

@@ -11,8 +11,8 @@
 
 // One group's integration over a window: M x'' = sum of its loaded contacts' forces along the
 // current normals, the Runge-Kutta-Nystrom pair RKN4(3)4FM on (displacements from the last
-// restart, velocities, impulses), restarted where it takes a body flying freely (docs/model.md,
-// section 17).
+// restart, velocities, impulses), restarted where it takes a body flying freely
+// (docs/design/moving_geometry.md).
 namespace mimpact::granular {
 
 using numerics::ContactEvent;
@@ -33,8 +33,8 @@ double hertz_force(double stiffness, double overlap) {
 
 }  // namespace
 
-void MovingContacts::Group::add_member(std::int32_t body) {
-  Body& b = world_.bodies_[std::size_t(body)];
+void MovingGroup::add_member(std::int32_t body) {
+  MovingBody& b = world_.bodies[std::size_t(body)];
   b.owner = id_;
   b.slot = std::int32_t(members_.size());
   members_.push_back(body);
@@ -43,9 +43,9 @@ void MovingContacts::Group::add_member(std::int32_t body) {
   velocity_.push_back(b.v);
 }
 
-void MovingContacts::Group::recall(Contact& c) const {
+void MovingGroup::recall(Contact& c) const {
   const MovingContact* record =
-      c.world_id >= 0 ? &world_.contacts_[std::size_t(c.world_id)] : nullptr;
+      c.world_id >= 0 ? &world_.contacts[std::size_t(c.world_id)] : nullptr;
   c.loaded = record && record->joined;
   c.max_compression = record ? record->max_compression : 0.0;
   c.impulse = record ? record->impulse : 0.0;
@@ -54,52 +54,52 @@ void MovingContacts::Group::recall(Contact& c) const {
   c.dissipated = record ? record->dissipated : 0.0;
 }
 
-void MovingContacts::Group::add_contact(std::int32_t first_body, std::int32_t second_body) {
+void MovingGroup::add_contact(std::int32_t first_body, std::int32_t second_body) {
   if (second_body >= 0 && second_body < first_body) std::swap(first_body, second_body);
   Contact c;
   c.world_id = world_.find_contact_id(first_body, second_body);
   if (c.world_id >= 0)
-    c.law = world_.contacts_[std::size_t(c.world_id)].law;
+    c.law = world_.contacts[std::size_t(c.world_id)].law;
   else
-    c.law = second_body >= 0 ? world_.geometry_.bead_law(first_body, second_body)
-                             : world_.geometry_.wall_law(first_body, std::size_t(-1 - second_body));
+    c.law = second_body >= 0 ? world_.geometry.bead_law(first_body, second_body)
+                             : world_.geometry.wall_law(first_body, std::size_t(-1 - second_body));
   recall(c);
   c.first_body = first_body;
   c.second_body = second_body;
-  const Eigen::VectorXd& radius = world_.geometry_.radius;
+  const Eigen::VectorXd& radius = world_.geometry.radius;
   c.reach = radius(first_body) + (second_body >= 0 ? radius(second_body) : 0.0);
   contacts_.push_back(c);
 }
 
 // The lists do not change within a window: a pair of members is found once, when the later of
 // the two joins.
-void MovingContacts::Group::pair_new_members() {
+void MovingGroup::pair_new_members() {
   for (std::size_t m = paired_members_; m < members_.size(); ++m) {
     const std::int32_t body = members_[m];
-    for (std::int32_t other : world_.lists_.bodies_near(body)) {
-      const Body& o = world_.bodies_[std::size_t(other)];
+    for (std::int32_t other : world_.lists.bodies_near(body)) {
+      const MovingBody& o = world_.bodies[std::size_t(other)];
       if (o.owner == id_ && std::size_t(o.slot) < m) add_contact(body, other);
     }
-    for (std::int32_t w : world_.lists_.walls_near(body)) add_contact(body, -1 - w);
+    for (std::int32_t w : world_.lists.walls_near(body)) add_contact(body, -1 - w);
   }
   paired_members_ = members_.size();
 }
 
-void MovingContacts::Group::begin(double start, const std::vector<std::int32_t>& members) {
+void MovingGroup::begin(double start, const std::vector<std::int32_t>& members) {
   start_ = time_ = start;
-  dimension_ = world_.geometry_.dimension;
+  dimension_ = world_.geometry.dimension;
   for (std::int32_t body : members) add_member(body);
 }
 
-void MovingContacts::Group::carry_on(std::int32_t id, double start,
-                                     const std::vector<std::int32_t>& members) {
+void MovingGroup::carry_on(std::int32_t id, double start,
+                           const std::vector<std::int32_t>& members) {
   // its former members not taken by another group yet are marked, their owner kept aside
   constexpr std::int32_t kFormerMember = -3;
   std::vector<std::int32_t> former;
   former.swap(members_);
   std::vector<std::int32_t> former_owner(former.size());
   for (std::size_t m = 0; m < former.size(); ++m) {
-    Body& b = world_.bodies_[std::size_t(former[m])];
+    MovingBody& b = world_.bodies[std::size_t(former[m])];
     former_owner[m] = b.owner;
     if (b.owner < 0) b.owner = kFormerMember;
   }
@@ -110,17 +110,17 @@ void MovingContacts::Group::carry_on(std::int32_t id, double start,
   velocity_.clear();
   // its former members first, already paired among themselves; then the new ones
   for (std::int32_t body : members)
-    if (world_.bodies_[std::size_t(body)].owner == kFormerMember) add_member(body);
+    if (world_.bodies[std::size_t(body)].owner == kFormerMember) add_member(body);
   paired_members_ = members_.size();
   for (std::int32_t body : members)
-    if (world_.bodies_[std::size_t(body)].owner != id_) add_member(body);
+    if (world_.bodies[std::size_t(body)].owner != id_) add_member(body);
   for (std::size_t m = 0; m < former.size(); ++m) {
-    Body& b = world_.bodies_[std::size_t(former[m])];
+    MovingBody& b = world_.bodies[std::size_t(former[m])];
     if (b.owner == kFormerMember) b.owner = former_owner[m];
   }
   // the contacts among those it keeps, as the world last committed them
   auto mine = [&](std::int32_t body) {
-    return body < 0 || world_.bodies_[std::size_t(body)].owner == id_;
+    return body < 0 || world_.bodies[std::size_t(body)].owner == id_;
   };
   std::erase_if(contacts_,
                 [&](const Contact& c) { return !mine(c.first_body) || !mine(c.second_body); });
@@ -128,10 +128,10 @@ void MovingContacts::Group::carry_on(std::int32_t id, double start,
   last_step_ = 0.0;  // from its members' steps, as a group formed anew
 }
 
-void MovingContacts::Group::begin_collision(double start, const std::vector<std::int32_t>& members,
-                                            std::int32_t first, std::int32_t second) {
+void MovingGroup::begin_collision(double start, const std::vector<std::int32_t>& members,
+                                  std::int32_t first, std::int32_t second) {
   start_ = time_ = start;
-  dimension_ = world_.geometry_.dimension;
+  dimension_ = world_.geometry.dimension;
   for (std::int32_t body : members) add_member(body);
   pair_new_members();
   if (second >= 0 && second < first) std::swap(first, second);
@@ -145,7 +145,7 @@ void MovingContacts::Group::begin_collision(double start, const std::vector<std:
 // The integration started again at t from the members' positions and velocities there: the
 // contacts of every pair of members within reach, all in the right-hand side, the bodies flying
 // freely it watches, the state y = (displacements, velocities, impulses since t).
-void MovingContacts::Group::restart(double t) {
+void MovingGroup::restart(double t) {
   time_ = t;
   const int d = dimension_;
   const std::size_t n = members_.size();
@@ -153,8 +153,8 @@ void MovingContacts::Group::restart(double t) {
   pair_new_members();
   watched_.clear();
   for (std::size_t m = 0; m < n; ++m)
-    for (std::int32_t other : world_.lists_.bodies_near(members_[m]))
-      if (world_.bodies_[std::size_t(other)].owner < 0)  // another group's: checked at the end
+    for (std::int32_t other : world_.lists.bodies_near(members_[m]))
+      if (world_.bodies[std::size_t(other)].owner < 0)  // another group's: checked at the end
         watched_.push_back({std::int32_t(m), other});
   active_.clear();
   springs_.clear();
@@ -163,15 +163,15 @@ void MovingContacts::Group::restart(double t) {
   spring_stiffness_.clear();
   gain_.resize(n);
   for (std::size_t m = 0; m < n; ++m)
-    gain_[m] = world_.time_scale_ * world_.bodies_[std::size_t(members_[m])].inverse_mass;
+    gain_[m] = world_.time_scale * world_.bodies[std::size_t(members_[m])].inverse_mass;
   history_changes_.clear();
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
-    const Body& first = world_.bodies_[std::size_t(c.first_body)];
+    const MovingBody& first = world_.bodies[std::size_t(c.first_body)];
     c.first = first.slot;
-    c.second = c.second_body < 0 ? c.second_body : world_.bodies_[std::size_t(c.second_body)].slot;
+    c.second = c.second_body < 0 ? c.second_body : world_.bodies[std::size_t(c.second_body)].slot;
     if (c.second >= 0)
-      c.anchor_offset = world_.bodies_[std::size_t(c.second_body)].anchor - first.anchor;
+      c.anchor_offset = world_.bodies[std::size_t(c.second_body)].anchor - first.anchor;
     c.slot = std::int32_t(active_.size());
     active_.push_back(std::int32_t(i));
     Spring& s = springs_.emplace_back(Spring{.first = c.first, .second = c.second});
@@ -187,14 +187,14 @@ void MovingContacts::Group::restart(double t) {
     if (c.second >= 0) {
       s.offset = c.anchor_offset + (origin_[std::size_t(c.second)] - origin_[std::size_t(c.first)]);
     } else {
-      s.offset = world_.geometry_.walls[std::size_t(-1 - c.second)].normal;
+      s.offset = world_.geometry.walls[std::size_t(-1 - c.second)].normal;
       springs_aside_.back().height = wall_height(c);
     }
   }
   y_.assign(2 * std::size_t(d) * n + active_.size(), 0.0);
   for (std::size_t m = 0; m < n; ++m)
     for (int k = 0; k < d; ++k)
-      y_[d * (n + m) + std::size_t(k)] = world_.time_scale_ * velocity_[m](k);
+      y_[d * (n + m) + std::size_t(k)] = world_.time_scale * velocity_[m](k);
   entries_.resize(watched_.size());
   for (std::size_t entry = 0; entry < entries_.size(); ++entry) entries_[entry] = entry;
   entries_sampled_at_ = std::nan("");
@@ -204,10 +204,9 @@ void MovingContacts::Group::restart(double t) {
     const Contact& c = contacts_[std::size_t(active_[j])];
     peaks_[j] = {.max_force = c.max_force, .time_of_max = c.time_of_max_force};
   }
-  if (!dense_)
-    dense_ = std::make_unique<numerics::RungeKuttaNystrom>(world_.options_.ode);
+  if (!dense_) dense_ = std::make_unique<numerics::RungeKuttaNystrom>(world_.options.ode);
   const StepStart from = step_start();
-  dense_->restart(y_, t, from.step, std::size_t(d) * n, 1.0 / world_.time_scale_, from.last_error);
+  dense_->restart(y_, t, from.step, std::size_t(d) * n, 1.0 / world_.time_scale, from.last_error);
   fresh_ = true;
 }
 
@@ -220,38 +219,37 @@ void MovingContacts::Group::restart(double t) {
 // halves of a group that parts start alike (one went on with its memory, the other without:
 // an HCP patch struck on its mirror plane parted mirror beads by 5.3e-12 of the speed at
 // tolerance 1e-8).
-MovingContacts::Group::StepStart MovingContacts::Group::step_start() const {
+MovingGroup::StepStart MovingGroup::step_start() const {
   if (last_step_ > 0.0) return {last_step_, dense_->last_error()};
   std::vector<std::pair<double, double>> hints;  // (step, error)
   for (std::int32_t body : members_) {
-    const Body& b = world_.bodies_[std::size_t(body)];
+    const MovingBody& b = world_.bodies[std::size_t(body)];
     if (b.step_hint > 0.0) hints.emplace_back(b.step_hint, b.error_hint);
   }
-  if (hints.empty())
-    return {world_.first_step_, numerics::RungeKuttaNystrom::kNoLastError};
+  if (hints.empty()) return {world_.first_step, numerics::RungeKuttaNystrom::kNoLastError};
   const auto middle = hints.begin() + std::ptrdiff_t(hints.size() / 2);
   std::nth_element(hints.begin(), middle, hints.end());
   return {middle->first, middle->second};
 }
 
-void MovingContacts::Group::member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
-                                         Eigen::Vector3d& v) const {
+void MovingGroup::member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
+                               Eigen::Vector3d& v) const {
   const int d = dimension_;
-  x = world_.bodies_[std::size_t(members_[slot])].anchor + (origin_[slot] + read(y + d * slot, d));
-  v = read(y + d * (members_.size() + slot), d) / world_.time_scale_;
+  x = world_.bodies[std::size_t(members_[slot])].anchor + (origin_[slot] + read(y + d * slot, d));
+  v = read(y + d * (members_.size() + slot), d) / world_.time_scale;
 }
 
-void MovingContacts::Group::rhs(const double* y, double* dydt) {
+void MovingGroup::rhs(const double* y, double* dydt) {
   if (dimension_ == 3) return rhs_in<3>(y, dydt);
   rhs_in<2>(y, dydt);
 }
 
 // The right-hand side with the dimension known to the compiler: it is most of a run's time.
 template <int D>
-void MovingContacts::Group::rhs_in(const double* y, double* dydt) {
+void MovingGroup::rhs_in(const double* y, double* dydt) {
   const std::size_t velocities = std::size_t(D) * members_.size();
   // in the state's units: w' = T a, q' = T F / m (x' = w / T is the Nystrom step's own)
-  const double impulse_rate = world_.time_scale_ / world_.mass_scale_;
+  const double impulse_rate = world_.time_scale / world_.mass_scale;
   double* acceleration = dydt + velocities;
   double* impulse = dydt + 2 * velocities;
   std::fill(acceleration, acceleration + velocities, 0.0);
@@ -365,22 +363,21 @@ HermiteTurn hermite_turn(double g0, double r0, double g1, double r1, double h) {
 }  // namespace
 
 // m: a wall contact's bead above its wall at the last restart
-double MovingContacts::Group::wall_height(const Contact& c) const {
-  const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
-  const Body& bead = world_.bodies_[std::size_t(c.first_body)];
+double MovingGroup::wall_height(const Contact& c) const {
+  const Plane& wall = world_.geometry.walls[std::size_t(-1 - c.second)];
+  const MovingBody& bead = world_.bodies[std::size_t(c.first_body)];
   return wall.normal.dot(bead.anchor - wall.point) + wall.normal.dot(origin_[std::size_t(c.first)]);
 }
 
 // On every elastic contact at every step: read from the state directly.
-void MovingContacts::Group::contact_gap(const Contact& c, const double* y, double& gap,
-                                        double& rate) const {
+void MovingGroup::contact_gap(const Contact& c, const double* y, double& gap, double& rate) const {
   const int d = dimension_;
   const std::size_t velocities = std::size_t(d) * members_.size();
   const std::size_t a = std::size_t(d) * std::size_t(c.first);
   const double* origin_a = origin_[std::size_t(c.first)].data();
-  const double inverse_time_scale = 1.0 / world_.time_scale_;
+  const double inverse_time_scale = 1.0 / world_.time_scale;
   if (c.second < 0) {
-    const Plane& wall = world_.geometry_.walls[std::size_t(-1 - c.second)];
+    const Plane& wall = world_.geometry.walls[std::size_t(-1 - c.second)];
     double height = wall_height(c), speed = 0.0;
     for (int k = 0; k < d; ++k) {  // as the right-hand side forms it
       height += wall.normal(k) * y[a + k];
@@ -403,21 +400,20 @@ void MovingContacts::Group::contact_gap(const Contact& c, const double* y, doubl
   rate = closing * inverse_time_scale / distance;
 }
 
-void MovingContacts::Group::watch_gap(const Watch& w, double t, const double* y, double& gap,
-                                      double& rate) const {
+void MovingGroup::watch_gap(const Watch& w, double t, const double* y, double& gap,
+                            double& rate) const {
   Eigen::Vector3d xa, va;
   member_state(std::size_t(w.member), y, xa, va);
-  const Body& o = world_.bodies_[std::size_t(w.other)];
+  const MovingBody& o = world_.bodies[std::size_t(w.other)];
   sphere_gap(
       xa, va, o.position_at(t), o.v,
-      world_.geometry_.radius(members_[std::size_t(w.member)]) + world_.geometry_.radius(w.other),
+      world_.geometry.radius(members_[std::size_t(w.member)]) + world_.geometry.radius(w.other),
       gap, rate);
 }
 
 // The member a watched body's entry reads, written into probe_ from the dense output at w's
 // time: an event search reads that, not the whole state.
-void MovingContacts::Group::probe_entry(std::size_t entry,
-                                        const numerics::RungeKuttaNystrom::Weights& w) {
+void MovingGroup::probe_entry(std::size_t entry, const numerics::RungeKuttaNystrom::Weights& w) {
   const std::size_t n = members_.size();
   const auto d = std::size_t(dimension_);
   for (std::size_t i = d * std::size_t(watched_[entry].member), end = i + d; i < end; ++i) {
@@ -429,8 +425,7 @@ void MovingContacts::Group::probe_entry(std::size_t entry,
 // At the step's end, where most are taken, the entries read the step's own state (its dense
 // output there was 84 M of the event search's 191 M instructions on FCC 20^3 at tolerance
 // 3e-4).
-void MovingContacts::Group::measure(double t, const std::vector<std::size_t>& entries,
-                                    Samples& samples) {
+void MovingGroup::measure(double t, const std::vector<std::size_t>& entries, Samples& samples) {
   samples.gap.resize(entries.size());
   samples.rate.resize(entries.size());
   if (t == dense_->time()) {
@@ -449,8 +444,7 @@ void MovingContacts::Group::measure(double t, const std::vector<std::size_t>& en
 // within: it does at an end (classify), or the cubic Hermite of its gap turns inside and
 // reaches the threshold give or take the turn's depth (a dip that the cubic misses by its whole
 // depth is not a dip the step resolves).
-bool MovingContacts::Group::suspect(std::size_t k, double h,
-                                    const numerics::Overlaps& overlaps) const {
+bool MovingGroup::suspect(std::size_t k, double h, const numerics::Overlaps& overlaps) const {
   const double g0 = start_samples_.gap[k], g1 = end_samples_.gap[k], r0 = start_samples_.rate[k],
                r1 = end_samples_.rate[k];
   // An open entry's one event is its gap reaching -overlaps.join. The cubic Hermite lies at most
@@ -474,11 +468,11 @@ bool MovingContacts::Group::suspect(std::size_t k, double h,
 
 // The earliest event of the watched entries in [a, b] of the current step: a body flying freely
 // touched (numerics::classify, as the compliant integrator); located by TOMS 748.
-bool MovingContacts::Group::next_event(double a, double b, Event& event) {
+bool MovingGroup::next_event(double a, double b, Event& event) {
   if (watched_.empty()) return false;
-  const numerics::OdeOptions& ode = world_.options_.ode;
-  const numerics::Overlaps overlaps{.join = world_.options_.overlap_resolution,
-                                             .leave = 0.5 * world_.options_.overlap_resolution};
+  const numerics::OdeOptions& ode = world_.options.ode;
+  const numerics::Overlaps overlaps{.join = world_.options.overlap_resolution,
+                                    .leave = 0.5 * world_.options.overlap_resolution};
   // every entry at the segment's ends, its start kept from the segment before
   if (entries_sampled_at_ != a) measure(a, entries_, start_samples_);
   measure(b, entries_, end_samples_);
@@ -496,9 +490,9 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
     for (std::size_t k = 0; k < suspects_.size(); ++k) {
       const std::size_t entry = suspects_[k];
       const numerics::ContactWatch w{.gap_before = s0.gap[k],
-                                              .gap_after = s1.gap[k],
-                                              .rate_before = s0.rate[k],
-                                              .rate_after = s1.rate[k]};
+                                     .gap_after = s1.gap[k],
+                                     .rate_before = s0.rate[k],
+                                     .rate_after = s1.rate[k]};
       const numerics::Classified crossed = numerics::classify(w, overlaps);
       if (crossed.kind == ContactEvent::none) continue;
       if (crossed.at_start) {
@@ -534,7 +528,7 @@ bool MovingContacts::Group::next_event(double a, double b, Event& event) {
 }
 
 // The members and active contacts at time t of the current step (their impulses folded in).
-void MovingContacts::Group::move_to(double t) {
+void MovingGroup::move_to(double t) {
   const int d = dimension_;
   const std::size_t n = members_.size();
   settle_histories(t);
@@ -549,12 +543,12 @@ void MovingContacts::Group::move_to(double t) {
     c.max_force = peaks_[std::size_t(c.slot)].max_force;
     c.time_of_max_force = peaks_[std::size_t(c.slot)].time_of_max;
     c.impulse +=
-        y_[2 * std::size_t(d) * n + std::size_t(c.slot)] * world_.mass_scale_ / world_.time_scale_;
+        y_[2 * std::size_t(d) * n + std::size_t(c.slot)] * world_.mass_scale / world_.time_scale;
     double gap, rate;
     contact_gap(c, y_.data(), gap, rate);
     c.compression = -gap;
     c.force = numerics::hysteresis_force(c.law, -gap, c.max_compression);
-    c.loaded = c.compression > 0.5 * world_.options_.overlap_resolution;
+    c.loaded = c.compression > 0.5 * world_.options.overlap_resolution;
     if (c.force > c.max_force) {
       c.max_force = c.force;
       c.time_of_max_force = t;
@@ -563,11 +557,11 @@ void MovingContacts::Group::move_to(double t) {
   time_ = t;
 }
 
-void MovingContacts::Group::track_peaks(double t0, double t1) {
+void MovingGroup::track_peaks(double t0, double t1) {
   if (t1 <= t0) return;
   const std::size_t impulses = 2 * std::size_t(dimension_) * members_.size();
   // the impulses' rates are T F / m (rhs_in)
-  const double to_force = world_.mass_scale_ / world_.time_scale_;
+  const double to_force = world_.mass_scale / world_.time_scale;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     Peak& p = peaks_[j];
     const auto peak = dense_->rate_peak(impulses + j, t0, t1, p.max_force / to_force);
@@ -575,12 +569,12 @@ void MovingContacts::Group::track_peaks(double t0, double t1) {
   }
 }
 
-void MovingContacts::Group::handle(const Event& event) {
+void MovingGroup::handle(const Event& event) {
   move_to(event.time);
   for (std::int32_t body : taken_)
-    if (world_.bodies_[std::size_t(body)].owner != id_) add_member(body);
-  ++world_.stats_.group_restarts;
-  world_.stats_.member_restarts += std::int64_t(members_.size());
+    if (world_.bodies[std::size_t(body)].owner != id_) add_member(body);
+  ++world_.stats.group_restarts;
+  world_.stats.member_restarts += std::int64_t(members_.size());
   restart(time_);
 }
 
@@ -597,9 +591,9 @@ void MovingContacts::Group::handle(const Event& event) {
 //   be of order h^2.
 // Elsewhere only the velocities are amended: the positions' error at an onset, of order h^3.5,
 // would take the step's last forces anew (they are the next step's first).
-double MovingContacts::Group::amend_switches(const State& start, const State& start_rate,
-                                             State& end, const State& end_rate, double h,
-                                             std::span<const std::size_t> switching) {
+double MovingGroup::amend_switches(const State& start, const State& start_rate, State& end,
+                                   const State& end_rate, double h,
+                                   std::span<const std::size_t> switching) {
   using numerics::rkn43::nodes, numerics::rkn43::velocity_weights;
   const auto d = std::size_t(dimension_);
   const std::size_t velocities = d * members_.size();
@@ -609,7 +603,7 @@ double MovingContacts::Group::amend_switches(const State& start, const State& st
   // the impulses' T / m_lightest), and its weights can miss no more: left as it is (63 % of
   // FCC 20^3's switching springs at tolerance 1e-2 and 57 % at 3e-4, 36 % of 32 x 32's at 3e-5:
   // contacts that barely load).
-  const double negligible = 1e-2 * world_.options_.ode.absolute_tolerance;
+  const double negligible = 1e-2 * world_.options.ode.absolute_tolerance;
   for (std::size_t j : switching) {
     const Spring& s = springs_[j];
     if (s.second < 0 || s.aside >= 0 ||
@@ -625,7 +619,7 @@ double MovingContacts::Group::amend_switches(const State& start, const State& st
       end[velocities + d * a + k] -= gain_[a] * h * missed.impulse(k);
       end[velocities + d * b + k] += gain_[b] * h * missed.impulse(k);
     }
-    impulses[j] += world_.time_scale_ / world_.mass_scale_ * h * missed.magnitude;
+    impulses[j] += world_.time_scale / world_.mass_scale * h * missed.magnitude;
   }
   return amend_histories(start, start_rate, end, end_rate, h);
 }
@@ -633,13 +627,13 @@ double MovingContacts::Group::amend_switches(const State& start, const State& st
 // The separation modelled by the quintic Hermite of the step's ends, whose accelerations are the
 // law the step took: with the cubic, which places a turn to O(h^3) in its time, a head-on pair
 // at e = 0 left 1.3e-6 of V off at tolerance 1e-6 (the quintic: 1.2e-10).
-double MovingContacts::Group::amend_histories(const State& start, const State& start_rate,
-                                              State& end, const State& end_rate, double h) {
+double MovingGroup::amend_histories(const State& start, const State& start_rate, State& end,
+                                    const State& end_rate, double h) {
   using numerics::rkn43::nodes, numerics::rkn43::velocity_weights,
       numerics::rkn43::position_weights;
   const auto d = std::size_t(dimension_);
   const std::size_t velocities = d * members_.size();
-  const double leave = 0.5 * world_.options_.overlap_resolution;
+  const double leave = 0.5 * world_.options.overlap_resolution;
   double cut = 1.0;
   history_changes_.clear();
   for (const SpringAside& aside : springs_aside_) {
@@ -672,12 +666,12 @@ double MovingContacts::Group::amend_histories(const State& start, const State& s
       for (std::size_t k = 0; k < d; ++k) {
         end[velocities + d * slot + k] += sign * gain_[slot] * h * missed.impulse(k);
         if (changed)
-          end[d * slot + k] += sign * gain_[slot] * h * h / world_.time_scale_ * missed.moment(k);
+          end[d * slot + k] += sign * gain_[slot] * h * h / world_.time_scale * missed.moment(k);
       }
     };
     push(std::size_t(s.first), -1.0);
     if (s.second >= 0) push(std::size_t(s.second), 1.0);
-    end[2 * velocities + j] += world_.time_scale_ / world_.mass_scale_ * h * missed.magnitude;
+    end[2 * velocities + j] += world_.time_scale / world_.mass_scale * h * missed.magnitude;
     for (std::size_t k = 0; k < missed.change_count; ++k)
       history_changes_.push_back({.spring = std::int32_t(j),
                                   .time = dense_->time() + missed.changes[k].s * h,
@@ -688,7 +682,7 @@ double MovingContacts::Group::amend_histories(const State& start, const State& s
     // its kick is within the tolerance. Its history lies the overlaps' resolution deeper.
     if (changed && history_changes_.back().max_compression > 0.0 &&
         aside.law.effective_restitution() == 0.0)
-      history_changes_.back().max_compression += world_.options_.overlap_resolution;
+      history_changes_.back().max_compression += world_.options.overlap_resolution;
   }
   if (cut < 1.0) history_changes_.clear();
   return cut;
@@ -703,9 +697,9 @@ double MovingContacts::Group::amend_histories(const State& start, const State& s
 // at tolerance 1e-3 and e = 0.2 (R = 0.42, estimate 3.2e-3), 7.5e-6 at 1e-6 and e = 0.01
 // (R = 0.18, 1.8e-5), 6.5e-7 at 1e-10 and e = 0.01 (R = 0.076, 2.2e-6), 2.2e-5 at 1e-3 and
 // e = 0.5 (R = 0.068, 8.4e-5). A turn in the step's last 5 % is amended.
-double MovingContacts::Group::turn_cut(std::size_t j, const numerics::ContactLaw& law,
-                                       const numerics::OnsetQuadrature& missed,
-                                       double end_overlap, double h) const {
+double MovingGroup::turn_cut(std::size_t j, const numerics::ContactLaw& law,
+                             const numerics::OnsetQuadrature& missed, double end_overlap,
+                             double h) const {
   constexpr double kCutBefore = 0.95, kPastTheTurn = 1.01;
   const auto* const last = missed.changes.begin() + missed.change_count;
   const auto* const turn = std::find_if(missed.changes.begin(), last,
@@ -719,21 +713,21 @@ double MovingContacts::Group::turn_cut(std::size_t j, const numerics::ContactLaw
   const Spring& s = springs_[j];
   const double inverse_mass =  // 1 / kg, the lighter body's
       std::max(gain_[std::size_t(s.first)], s.second >= 0 ? gain_[std::size_t(s.second)] : 0.0) /
-      world_.time_scale_;
+      world_.time_scale;
   const double speed_error = law.exponent * law.exponent / 30.0 * law.force(turn->history) * share *
                              (1.0 - turn->s) * h * inverse_mass;
-  return speed_error <= world_.options_.ode.relative_tolerance * world_.speed_bound_
+  return speed_error <= world_.options.ode.relative_tolerance * world_.speed_bound
              ? 1.0
              : kPastTheTurn * turn->s;
 }
 
-void MovingContacts::Group::spring_separation(std::size_t j, const double* y, const double* dydt,
-                                              double h, Eigen::Vector3d& r, Eigen::Vector3d& u,
-                                              Eigen::Vector3d& a) const {
+void MovingGroup::spring_separation(std::size_t j, const double* y, const double* dydt, double h,
+                                    Eigen::Vector3d& r, Eigen::Vector3d& u,
+                                    Eigen::Vector3d& a) const {
   const auto d = std::size_t(dimension_);
   const std::size_t velocities = d * members_.size();
   // w = T v, w' = T x'': h w / T and h^2 w' / T
-  const double to_rate = h * (1.0 / world_.time_scale_), to_acceleration = h * to_rate;
+  const double to_rate = h * (1.0 / world_.time_scale), to_acceleration = h * to_rate;
   const Spring& s = springs_[j];
   const std::size_t first = d * std::size_t(s.first);
   a.setZero();
@@ -763,7 +757,7 @@ void MovingContacts::Group::spring_separation(std::size_t j, const double* y, co
 // J: what contact c would give back from where it is, its potential on its curve less, past
 // its history on the loading curve, what its last turn booked as dissipated (settle_histories),
 // so that kinetic + stored + dissipated stays the energy given, through a reloading too.
-double MovingContacts::Group::stored_energy(const Contact& c) {
+double MovingGroup::stored_energy(const Contact& c) {
   const double potential = numerics::hysteresis_energy(c.law, c.compression, c.max_compression);
   if (!(c.max_compression > 0.0) || c.compression < c.max_compression) return potential;
   const double e = c.law.restitution;
@@ -775,7 +769,7 @@ double MovingContacts::Group::stored_energy(const Contact& c) {
 // booked as dissipated, (1 - e^2) of its loading work beyond the history it had (a contact
 // that reloads past its history and turns again has given back nothing between); where it
 // opened, no history.
-void MovingContacts::Group::settle_histories(double t) {
+void MovingGroup::settle_histories(double t) {
   bool changed = false;
   for (const HistoryChange& change : history_changes_) {
     if (change.time > t) continue;
@@ -796,13 +790,13 @@ void MovingContacts::Group::settle_histories(double t) {
   if (changed) dense_->refresh_derivative();
 }
 
-void MovingContacts::Group::take_step() {
+void MovingGroup::take_step() {
   fresh_ = false;
   dense_->step(Motion{*this});
   last_step_ = dense_->last_step();
-  world_.stats_.member_steps += std::int64_t(members_.size());
-  if (++world_.stats_.steps > world_.options_.max_steps)
-    throw Error("moving contacts: max_steps = " + std::to_string(world_.options_.max_steps) +
+  world_.stats.member_steps += std::int64_t(members_.size());
+  if (++world_.stats.steps > world_.options.max_steps)
+    throw Error("moving contacts: max_steps = " + std::to_string(world_.options.max_steps) +
                 " time steps taken by t = " + to_text(dense_->time()) +
                 " s (compliant.max_steps in a scene); the contacts' time scale is below what the "
                 "tolerance and double precision resolve");
@@ -812,7 +806,7 @@ void MovingContacts::Group::take_step() {
                 " s; speeds, forces or stiffnesses are out of the range double precision carries");
 }
 
-void MovingContacts::Group::integrate(double end) {
+void MovingGroup::integrate(double end) {
   // the groups formed after this one (collisions) own bodies it may have watched as free
   restart(time_);
   while (time_ < end) {
@@ -834,13 +828,13 @@ void MovingContacts::Group::integrate(double end) {
   if (!fresh_) move_to(end);
 }
 
-Eigen::Vector3d MovingContacts::Group::final_position(std::int32_t slot) const {
+Eigen::Vector3d MovingGroup::final_position(std::int32_t slot) const {
   return position_[std::size_t(slot)];
 }
 
-void MovingContacts::Group::commit() {
+void MovingGroup::commit() {
   for (std::size_t m = 0; m < members_.size(); ++m) {
-    Body& b = world_.bodies_[std::size_t(members_[m])];
+    MovingBody& b = world_.bodies[std::size_t(members_[m])];
     b.x = position_[m];
     b.shift = shift_[m];
     b.v = velocity_[m];
@@ -848,14 +842,14 @@ void MovingContacts::Group::commit() {
     b.owner = b.slot = -1;
     b.step_hint = last_step_;
     b.error_hint = dense_->last_error();
-    b.last_window = world_.stats_.windows;
+    b.last_window = world_.stats.windows;
     b.last_group = id_;
   }
   for (Contact& c : contacts_) {
     if (c.world_id < 0 && c.impulse == 0.0 && !c.loaded) continue;  // never touched
     if (c.world_id < 0) c.world_id = world_.contact_id(c.first_body, c.second_body);
-    MovingContact& record = world_.contacts_[std::size_t(c.world_id)];
-    if (record.max_force == 0.0 && c.max_force > 0.0) ++world_.stats_.contacts_loaded;
+    MovingContact& record = world_.contacts[std::size_t(c.world_id)];
+    if (record.max_force == 0.0 && c.max_force > 0.0) ++world_.stats.contacts_loaded;
     record.joined = c.loaded;
     record.max_compression = c.max_compression;
     record.impulse = c.impulse;
@@ -864,13 +858,13 @@ void MovingContacts::Group::commit() {
     record.time_of_max_force = c.time_of_max_force;
     record.dissipated = c.dissipated;
     record.stored_energy = c.loaded ? stored_energy(c) : 0.0;
-    if (c.loaded) world_.loaded_ids_.push_back(c.world_id);
+    if (c.loaded) world_.loaded_ids.push_back(c.world_id);
   }
 }
 
-void MovingContacts::Group::release() {
+void MovingGroup::release() {
   for (std::int32_t body : members_) {
-    Body& b = world_.bodies_[std::size_t(body)];
+    MovingBody& b = world_.bodies[std::size_t(body)];
     b.owner = b.slot = -1;
   }
 }

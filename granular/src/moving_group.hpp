@@ -1,9 +1,9 @@
 #pragma once
 
 // One group of the moving-geometry integration (moving_contacts.hpp): the bodies linked by
-// loaded contacts, integrated over a window on their own. Shared by moving_contacts.cpp (the
-// windows: groups formed, met, merged, committed) and moving_group.cpp (one group's
-// integration: its right-hand side, its events, its restarts).
+// loaded contacts, integrated over a window on their own. The windows (moving_contacts.cpp)
+// form, meet, merge and commit groups; a group reads and writes only the world they share
+// (moving_world.hpp).
 
 #include <Eigen/Dense>
 #include <cstdint>
@@ -11,41 +11,16 @@
 #include <span>
 #include <vector>
 
-#include "mimpact/granular/moving_contacts.hpp"
+#include "mimpact/numerics/contact_events.hpp"
 #include "mimpact/numerics/onset_quadrature.hpp"
 #include "mimpact/numerics/runge_kutta_nystrom.hpp"
-#include "mimpact/numerics/contact_events.hpp"
+#include "moving_world.hpp"
 
 namespace mimpact::granular {
 
-// A body between windows: where it is and how it moves.
-struct MovingContacts::Body {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();  // m, at `time`
-  // m: where it began, and x less that, carried on its own: a gap is formed from the anchors'
-  // difference and the shifts', not from coordinates rounded to the packing's size at every
-  // window (which set a floor of 1e-12 of the speed on a 10-bead line's velocities)
-  Eigen::Vector3d anchor = Eigen::Vector3d::Zero(), shift = Eigen::Vector3d::Zero();
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();  // m/s
-  double time = 0.0;                            // s; flying freely, it is at x + v (t - time)
-  double inverse_mass = 0.0;
-  std::int32_t owner = -1;  // the group integrating it in this window, or -1: flying freely
-  std::int32_t slot = -1;   // its place among its group's members
-  // s: the last step its group took, and its controller's memory (the error ratio of that
-  // step), where the next group starts
-  double step_hint = 0.0, error_hint = 0.0;
-  // the group that committed it, and in which window: the group of the window before that
-  // committed most of a new group's members goes on as that group (Group::carry_on)
-  std::int64_t last_window = -1;
-  std::int32_t last_group = -1;
-  bool listed_moving = false;  // in MovingContacts::moving_
-
-  Eigen::Vector3d position_at(double t) const { return x + v * (t - time); }
-  Eigen::Vector3d shift_at(double t) const { return shift + v * (t - time); }
-};
-
-class MovingContacts::Group {
+class MovingGroup {
  public:
-  Group(MovingContacts& world, std::int32_t id) : world_(world), id_(id) {}
+  MovingGroup(MovingWorld& world, std::int32_t id) : world_(world), id_(id) {}
 
   // Takes `members` (which it owns from now) from `start`, their contacts as the world last
   // committed them; integrate() starts it.
@@ -182,7 +157,7 @@ class MovingContacts::Group {
   // The group's motion as the Nystrom step reads it: its right-hand side, and the amendment at
   // the contacts that switched within a step.
   struct Motion {
-    Group& group;
+    MovingGroup& group;
     void operator()(const State& y, State& dydt, double) { group.rhs(y.data(), dydt.data()); }
     double amend(const State& start, const State& start_rate, State& end, const State& end_rate,
                  double h, std::span<const std::size_t> switching) {
@@ -201,14 +176,13 @@ class MovingContacts::Group {
   static double stored_energy(const Contact& c);
   // 1, or the share of the step h to cut it to, just past spring j's turn (amend_histories)
   double turn_cut(std::size_t j, const numerics::ContactLaw& law,
-                  const numerics::OnsetQuadrature& missed, double end_overlap,
-                  double h) const;
+                  const numerics::OnsetQuadrature& missed, double end_overlap, double h) const;
   // the inelastic springs' part of amend_switches
   double amend_histories(const State& start, const State& start_rate, State& end,
                          const State& end_rate, double h);
   void take_step();
 
-  MovingContacts& world_;
+  MovingWorld& world_;
   std::int32_t id_;
   int dimension_ = 2;
   double start_ = 0.0, time_ = 0.0;

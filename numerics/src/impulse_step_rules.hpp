@@ -75,13 +75,13 @@ constexpr double kSmallestCut = 1e-6;
 // u0 + du s, and the work trapezoidal, so E(s) = E0 - f dp (u0 s + du s^2/2) in expansion,
 // with f = 1/e^2 for bi-stiffness and 1 for mono-stiffness.
 struct PhaseStep {
-  double u = 0.0;                // u0: the contact's velocity at the step's start (m/s)
-  double du = 0.0;               // its change over the whole step (m/s)
-  double energy = 0.0;           // E0 (J)
-  double delta_p = 0.0;          // dp, the contact's impulse over the step (N s)
-  double expansion_rate = 1.0;   // f
-  double release_level = 0.0;    // J
-  bool drops_at_turn = false;    // e = 0: released where the step's work is zero
+  double u = 0.0;               // u0: the contact's velocity at the step's start (m/s)
+  double du = 0.0;              // its change over the whole step (m/s)
+  double energy = 0.0;          // E0 (J)
+  double delta_p = 0.0;         // dp, the contact's impulse over the step (N s)
+  double expansion_rate = 1.0;  // f
+  double release_level = 0.0;   // J
+  bool drops_at_turn = false;   // e = 0: released where the step's work is zero
 };
 double phase_end(const PhaseStep& step);
 

@@ -112,7 +112,7 @@ class LzbAdaptiveIntegrator::Impact {
 
   // An impact whose every law is continuous at the switches (e = 1, or bi-stiffness with e > 0:
   // d delta_j/dt = -u_j or -u_j / e^2 meet where u_j = 0) keeps them within the steps
-  // (docs/model.md, section 10): its members, the contacts holding energy or approaching and two
+  // (docs/design/adaptive_lzb.md): its members, the contacts holding energy or approaching and two
   // rings of their neighbours, all carry delta_j and P_j; a contact's delta_j runs below 0 once
   // it separates, its force K max(delta_j, 0)^eta switching off by itself, and where it
   // approaches again (u_j turning negative, a "closing" turn) it is set back to the clamp,
@@ -347,7 +347,7 @@ void LzbAdaptiveIntegrator::Impact::size_segment() {
 
 // The contacts' work since the last accounting point, by the trapezoidal rule on u: per contact
 // an approximation of the integral of -u_j dP_j, summed over them exact, since u is linear in P
-// (the kinetic energy lost to round-off, docs/model.md section 10).
+// (the kinetic energy lost to round-off, docs/model.md section 12; docs/design/adaptive_lzb.md).
 void LzbAdaptiveIntegrator::Impact::account_work(const State& y) {
   member_velocities(y, velocity_at_);
   for (std::size_t a = 0; a < active_; ++a) {
@@ -438,8 +438,7 @@ double LzbAdaptiveIntegrator::Impact::watched_value(std::size_t member, int kind
 // The switches of [t0, t1], each narrowed (TOMS 748) to a few ulp of t on the dense output.
 // Every member is on the near side of its switches when a segment starts, up to rounding.
 void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& before,
-                                           const Watched& after,
-                                           std::vector<Crossing>& found) {
+                                           const Watched& after, std::vector<Crossing>& found) {
   if (within_steps_) {
     locate_turns(t0, t1, before, after);
     return;
@@ -611,8 +610,7 @@ void LzbAdaptiveIntegrator::Impact::end_segment(const State& y) {
   }
 }
 
-void LzbAdaptiveIntegrator::Impact::apply(const std::vector<Crossing>& crossings,
-                                          double t) {
+void LzbAdaptiveIntegrator::Impact::apply(const std::vector<Crossing>& crossings, double t) {
   for (const Crossing& crossing : crossings) {
     const Index j = members_[std::size_t(crossing.index)];
     switch (crossing.kind) {
@@ -742,8 +740,9 @@ void LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
     const std::vector<Crossing> found = scan_events(
         step_start, ode_.time(), kSamplesPerStep + 1, 0.0, before_, after_,
         [this](double time, Watched& v) { watch(time, v); },
-        [this](double t0, double t1, const Watched& b, const Watched& a,
-               std::vector<Crossing>& f) { locate(t0, t1, b, a, f); });
+        [this](double t0, double t1, const Watched& b, const Watched& a, std::vector<Crossing>& f) {
+          locate(t0, t1, b, a, f);
+        });
     if (found.empty()) {
       t = ode_.time();
       const bool changed = within_steps_ && settle_turns(step_start, t);

@@ -185,21 +185,25 @@ struct StepArrays {
 // 3. the step ends where the primary's phase ends, if that is inside it: a lone contact then
 //    comes out exact, and the primary never loses energy to the clamp at E = 0
 template <class Delassus>
-[[gnu::always_inline]] inline void cut_at_phase_end(StepArrays& a, const Delassus& H,
-                                                    Index primary, double delta_p) {
+[[gnu::always_inline]] inline void cut_at_phase_end(StepArrays& a, const Delassus& H, Index primary,
+                                                    double delta_p) {
   double du = 0.0;  // H is symmetric: column pi is row pi
   H.for_each_in_column(primary, [&](Index i, double h_ij) { du += h_ij * a.step_impulse[i]; });
   const LawConstants& law = a.law[primary];
   const double e = law.restitution;
   const bool in_expansion_mono = law.mono_stiffness;
   const double release_level =
-      in_expansion_mono ? (1.0 - e * e) * (a.u[primary] < 0.0 ? a.energy[primary]
-                                                              : a.compression_work[primary])
-                        : 0.0;
-  const double share = detail::phase_end(
-      {.u = a.u[primary], .du = du, .energy = a.energy[primary], .delta_p = delta_p,
-       .expansion_rate = in_expansion_mono ? 1.0 : law.inverse_e2,
-       .release_level = release_level, .drops_at_turn = !in_expansion_mono && e == 0.0});
+      in_expansion_mono
+          ? (1.0 - e * e) * (a.u[primary] < 0.0 ? a.energy[primary] : a.compression_work[primary])
+          : 0.0;
+  const double share =
+      detail::phase_end({.u = a.u[primary],
+                         .du = du,
+                         .energy = a.energy[primary],
+                         .delta_p = delta_p,
+                         .expansion_rate = in_expansion_mono ? 1.0 : law.inverse_e2,
+                         .release_level = release_level,
+                         .drops_at_turn = !in_expansion_mono && e == 0.0});
   if (share < 1.0)
     for (std::size_t k = 0; k < a.active_count; ++k) a.step_impulse[a.active[k]] *= share;
 }
@@ -276,11 +280,25 @@ template <class Delassus>
 void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
                                 ImpactObserver* observer, LzbResult& result) {
   Contacts& c = contacts_;
-  StepArrays a{law, c.tolerance_u.data(), c.tolerance_energy.data(), c.u.data(), c.u_old.data(),
-               c.energy.data(), c.impulse.data(), c.impulse_carry.data(), c.step_impulse.data(),
-               c.force.data(), c.force_hat.data(), c.compression_work.data(), c.work.data(),
-               c.max_force.data(), c.time_of_max.data(), c.in_impact.get(), c.active.data(),
-               c.merge_buffer.data(), initially_active_};
+  StepArrays a{law,
+               c.tolerance_u.data(),
+               c.tolerance_energy.data(),
+               c.u.data(),
+               c.u_old.data(),
+               c.energy.data(),
+               c.impulse.data(),
+               c.impulse_carry.data(),
+               c.step_impulse.data(),
+               c.force.data(),
+               c.force_hat.data(),
+               c.compression_work.data(),
+               c.work.data(),
+               c.max_force.data(),
+               c.time_of_max.data(),
+               c.in_impact.get(),
+               c.active.data(),
+               c.merge_buffer.data(),
+               initially_active_};
   const double delta_p = options_.delta_p;
   std::int64_t step = 0;
   double time = 0.0, principal = 0.0;
@@ -291,8 +309,9 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
     const Index primary = find_primary(a);
     if (step >= options_.max_steps) {
       result.status = LzbStatus::step_limit;
-      result.message = "the impact did not end within max_steps = " +
-                       std::to_string(options_.max_steps) + " impulse steps; raise max_steps or delta_p";
+      result.message =
+          "the impact did not end within max_steps = " + std::to_string(options_.max_steps) +
+          " impulse steps; raise max_steps or delta_p";
       break;
     }
     const double primary_force = a.force_hat[primary];
@@ -304,9 +323,8 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
     const double primary_energy_start = a.energy[primary];
     const double primary_energy_end = update_energies(a, primary, stepping);
     merge_joined(a, stepping);
-    time += detail::step_duration(a.step_impulse[primary], primary_energy_start,
-                                  primary_energy_end, primary_force, law[primary].coefficient,
-                                  law[primary].power);
+    time += detail::step_duration(a.step_impulse[primary], primary_energy_start, primary_energy_end,
+                                  primary_force, law[primary].coefficient, law[primary].power);
     principal += a.step_impulse[primary];
     ++step;
     if (observer && options_.sample_every > 0 && step % options_.sample_every == 0)

@@ -122,7 +122,7 @@ nlohmann::ordered_json configuration_json(
           {"wall_time", check->wall_time}};
 }
 
-// The work of a compliant run in the moving geometry (docs/model.md, section 17), or null.
+// The work of a compliant run in the moving geometry (docs/design/moving_geometry.md), or null.
 nlohmann::ordered_json moving_json(const granular::MovingContactsStats& work) {
   if (work.windows == 0) return nullptr;
   return {{"body_steps", work.member_steps},

@@ -263,8 +263,7 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
 
 void CompliantIntegrator::take_step() {
   State& s = *state_;
-  s.dense->step([this](const numerics::DenseOutput::State& y,
-                       numerics::DenseOutput::State& dydt,
+  s.dense->step([this](const numerics::DenseOutput::State& y, numerics::DenseOutput::State& dydt,
                        double t) { evaluate(t, y.data(), dydt.data()); });
   const double t = s.dense->time();
   if (s.dense->steps() > options_.max_steps) {
@@ -358,9 +357,9 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
       found.push_back({long(j), int(crossed.kind), bracket.upper});
     }
   };
-  const std::vector<Crossing> found = numerics::scan_events(
-      a, b, options_.ode.samples_per_step, options_.ode.event_tolerance, s.before, s.after, watch,
-      locate);
+  const std::vector<Crossing> found =
+      numerics::scan_events(a, b, options_.ode.samples_per_step, options_.ode.event_tolerance,
+                            s.before, s.after, watch, locate);
   double earliest = kNever;
   for (const Crossing& crossing : found)
     if (crossing.time < earliest) {

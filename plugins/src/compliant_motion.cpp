@@ -2,8 +2,8 @@
 
 #include "compliant_state.hpp"
 
-// The moving-body set of the compliant integrator (docs/model.md, section 11): which bodies are
-// integrated and which fly freely, the contacts that join and leave, the joins computed in
+// The moving-body set of the compliant integrator (docs/design/compliant_contacts.md): which bodies
+// are integrated and which fly freely, the contacts that join and leave, the joins computed in
 // closed form between bodies in free flight.
 namespace mimpact::plugins {
 

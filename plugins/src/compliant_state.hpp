@@ -14,8 +14,8 @@
 #include <queue>
 #include <vector>
 
-#include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/numerics/contact_events.hpp"
+#include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/plugins/internal/mass_block.hpp"
 
 namespace mimpact::numerics {

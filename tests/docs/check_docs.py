@@ -186,7 +186,8 @@ def main():
     parser.add_argument("pages", nargs="*")
     args = parser.parse_args()
     pages = [Path(p).resolve() for p in args.pages] or (
-        [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md")))
+        [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
+        + sorted((ROOT / "docs" / "design").glob("*.md")))
     tree_before = untracked_changes()
     scratch = scratch_directory(args.build)
     failures, counts = [], {}

@@ -186,7 +186,7 @@ TEST(MovingContacts, WallBounceKeepsTheTangentAndRestitutesTheNormal) {
 // and scaled by e, momentum kept, and (1 - e^2) of the relative motion's energy booked as
 // dissipated. The law turns at the largest overlap within a step, which is amended there, or
 // cut just past the turn where the unloading, 1 / e^2 stiffer, would leave the amendment's
-// path (docs/model.md, section 17): e = 0.01 takes the cut, and at e = 0 the force drops to
+// path (docs/design/moving_geometry.md): e = 0.01 takes the cut, and at e = 0 the force drops to
 // zero at the turn. Measured at tolerance 1e-10: 5.4e-12, 2.6e-12, 2.2e-13 and 5.1e-13 of V
 // from e V for e = 0, 0.01, 0.3 and 0.9 (where the turns were located events, the same pair
 // through `mimpact packing` was 7.9e-7 off at e = 0, the e = 0 contact kicked again from the

@@ -16,7 +16,7 @@
 namespace mimpact::numerics {
 namespace {
 
-// within_steps_from = 1: the switches kept within the steps (docs/model.md, section 10), as a
+// within_steps_from = 1: the switches kept within the steps (docs/design/adaptive_lzb.md), as a
 // packing's impact keeps them; the default locates a lone contact's or a chain's
 LzbResult lone_contact(double h, double u_minus, const ContactLaw& law, double tolerance,
                        std::int64_t within_steps_from = LzbAdaptiveOptions{}.within_steps_from) {

@@ -1,7 +1,7 @@
 // Issue 24, item e: an LZB run of beads tells how far its frozen configuration is from the beads
-// as they move (granular/configuration_check.hpp, docs/model.md section 17). The report is the
-// moving geometry's; these tests hold it against an independent code (LAMMPS), against
-// Hertz's scaling, and against a packing where LZB's configuration is exact.
+// as they move (granular/configuration_check.hpp, docs/design/moving_geometry.md). The report is
+// the moving geometry's; these tests hold it against an independent code (LAMMPS), against Hertz's
+// scaling, and against a packing where LZB's configuration is exact.
 #include <gtest/gtest.h>
 
 #include <cmath>

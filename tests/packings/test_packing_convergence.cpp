@@ -26,7 +26,7 @@ double largest_difference(const PackingCase& a, const PackingCase& b) {
 }
 
 // An impact of more than a hundred elastic contacts keeps their switches within the adaptive
-// LZB's steps (docs/model.md, section 10): a separating contact's delta runs below zero, its
+// LZB's steps (docs/design/adaptive_lzb.md): a separating contact's delta runs below zero, its
 // force switching off by itself, and where it approaches again it is set back to grow from zero,
 // its impulse integrated again from there. A 12 x 12 hexagonal packing (some 280 contacts a
 // step) at tolerance 1e-9 meets the compliant contacts in the impact's configuration for
@@ -60,7 +60,7 @@ TEST(PackingConvergence, AnElasticImpactsSwitchesWithinTheStepsMeetTheCompliantC
 
 // An inelastic impact (bi-stiffness, e < 1) keeps its switches within the steps too: where a
 // contact's u_j changes sign, its delta_j goes on at the other rate (1/e^2 times u_j
-// expanding), settled after the step (docs/model.md, section 10). The same integrator locating
+// expanding), settled after the step (docs/design/adaptive_lzb.md). The same integrator locating
 // every switch ("within_steps_from" above the impact's contacts) is the reference: on a 16 x 16
 // hexagonal packing at tolerance 1e-9 the two meet within 1.7e-9 m/s at e = 0.5 and 7.6e-10 at
 // e = 0.9 (largest velocity component; in 15 225 and 3 186 steps against 38 897 and 6 065),
@@ -93,8 +93,8 @@ TEST(PackingConvergence, AnInelasticImpactsSwitchesWithinTheStepsMeetTheLocatedO
 }
 
 // The compliant contacts in the moving geometry with inelastic contacts, whose law turns within
-// the steps (amended there, docs/model.md section 17): on a 16 x 16 hexagonal packing struck at
-// 1 m/s, until 0.5 ms, the velocities at tolerance 1e-6 lie within it of the run at 1e-10, and
+// the steps (amended there, docs/design/moving_geometry.md): on a 16 x 16 hexagonal packing struck
+// at 1 m/s, until 0.5 ms, the velocities at tolerance 1e-6 lie within it of the run at 1e-10, and
 // the energy ledger (kinetic + held + dissipated, the turns booking (1 - e^2) of each one's
 // loading) closes to the tolerance. Measured: RMS 2.9e-8 and 1.7e-8 of V, ledgers 2.8e-12 and
 // 1.5e-11 of the energy at 1e-10, for e = 0.5 and 0.9. (With the turns located, each a

@@ -73,7 +73,7 @@ void expect_work_follows_what_moves(const char* small_name, const Work& small,
 // restarts to take each body its halo missed restarts more often the larger it is, each
 // restart costing about half a step of all its bodies: 32 x 32 restarted 4.7 % of its body
 // steps' bodies, 100 x 100 39 %, before the halo took the bodies its own bodies meet
-// (docs/model.md, section 17); now 1.5e-5 and 2.0 %. What a step costs beyond its bodies'
+// (docs/design/moving_geometry.md); now 1.5e-5 and 2.0 %. What a step costs beyond its bodies'
 // right-hand sides (the windows' groups, the peaks) is the benchmark's to measure.
 TEST(PackingCost, BodyStepsPerLoadedContactAndSecondDoNotGrowWithThePacking) {
   expect_work_follows_what_moves("16 x 16", hexagonal_work(16), "32 x 32", hexagonal_work(32));
@@ -102,7 +102,7 @@ TEST(PackingCost, InSpaceTooTheWorkPerLoadedContactDoesNotGrowWithThePacking) {
 // force and per second of the impact. Located one by one, every switch of any contact ended a
 // step of all of them, and the steps grew with the contacts (measured for e = 1: 2.48e6 and
 // 7.17e6 on 16 x 16 and 32 x 32, 0.51 s and 12.0 s; for e = 0.9: 1.89e6 and 5.53e6, 0.27 s and
-// 9.3 s). Kept within the steps (docs/model.md section 10), for e = 1 4.61e5 and 3.23e5 (0.09 s
+// 9.3 s). Kept within the steps (docs/design/adaptive_lzb.md), for e = 1 4.61e5 and 3.23e5 (0.09 s
 // and 0.76 s; 56 x 56 2.56e5, 100 x 100 1.94e5 in 25 s), for e = 0.9, where an expanding
 // contact's delta goes at 1/e^2 its compression's rate, 4.02e5 and 2.66e5 (0.12 s and 0.92 s).
 TEST(PackingCost, TheAdaptiveLzbsWorkPerReachedContactDoesNotGrowWithThePacking) {
@@ -134,7 +134,7 @@ TEST(PackingCost, TheAdaptiveLzbsWorkPerReachedContactDoesNotGrowWithThePacking)
 }
 
 // A window that one group integrates may outlast the bound that keeps two groups from meeting
-// unseen within one (docs/model.md, section 17): an FCC 6^3 packing struck at 1 m/s takes such
+// unseen within one (docs/design/moving_geometry.md): an FCC 6^3 packing struck at 1 m/s takes such
 // windows at tolerance 3e-3, and its velocities stay within 1e-4 of the run at 1e-10,
 // whose short steps keep every window short, with its momentum kept to round-off.
 TEST(PackingCost, AWindowOfOneGroupOutlastsTwoGroupsBoundAndKeepsTheAnswer) {

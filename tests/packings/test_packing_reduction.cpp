@@ -177,7 +177,7 @@ TEST(PackingReduction, ALineInTheMovingGeometryIsTheChain) {
 
 // The same for inelastic contacts (bi-stiffness, e = 0.5 and 0.9), whose law turns at every
 // contact's largest overlap: the chain's integrator locates each turn and restarts there, the
-// moving geometry finds it within its step and amends the step (docs/model.md, section 17).
+// moving geometry finds it within its step and amends the step (docs/design/moving_geometry.md).
 // Measured: 5.2e-13 m/s at e = 0.5, 1.5e-12 at e = 0.9, where the moving geometry that located
 // its turns too (before 2026-11-28) was 1.2e-12 from the chain: both integrators' floor at
 // tolerance 1e-14, bounded at 2e-12.

@@ -86,7 +86,7 @@ struct AdaptiveKind {
 };
 
 // The same with every switch kept within the steps, as a packing's impact keeps them where its
-// laws are continuous at their switches (docs/model.md, section 10; an impact whose laws are
+// laws are continuous at their switches (docs/design/adaptive_lzb.md; an impact whose laws are
 // not, e = 0 or the mono-stiffness release, still locates them). Not one of the typed suites'
 // kinds: its released forces are left to the error control, not located, so it does not meet
 // their bounds for the located integrator. Measured at 1e-8: a lone linear contact's u+ 7.6e-11

@@ -10,10 +10,10 @@
 #include "mimpact/granular/run_limits.hpp"
 
 // How far the LZB impact's frozen configuration is from the beads as they move (docs/model.md,
-// section 17): an LZB run of beads is compared with the compliant contacts in the moving
-// geometry, integrated from the same start to the end of its last impact, so that the user
-// learns which model the scene requires. The two parts of that distance (the gaps, the same
-// share at every speed, and the normals, growing as V^0.8) are the model's, not the
+// section 17; docs/design/moving_geometry.md): an LZB run of beads is compared with the compliant
+// contacts in the moving geometry, integrated from the same start to the end of its last impact, so
+// that the user learns which model the scene requires. The two parts of that distance (the gaps,
+// the same share at every speed, and the normals, growing as V^0.8) are the model's, not the
 // integrators': no estimate from the LZB run alone gives the first, so it is measured.
 namespace mimpact::granular {
 

@@ -2,8 +2,8 @@
 
 // The events of the compliant integration, classified by a pure function of what a contact's
 // gap and rate do over one part of a step: tested on its own
-// (tests/numerics/test_contact_events.cpp), used by the compliant integrator and the moving geometry to decide which
-// crossings to locate.
+// (tests/numerics/test_contact_events.cpp), used by the compliant integrator and the moving
+// geometry to decide which crossings to locate.
 
 namespace mimpact::numerics {
 

@@ -40,7 +40,7 @@ struct LzbAdaptiveOptions {
   // contacts, whose switches grow with them (a packing's impact then costs as the square of its
   // contacts). Kept within, a switch costs nothing of its own, and the steps are those the
   // released forces' error allows: the cheaper where many contacts switch, the dearer where few
-  // do (docs/model.md, section 10: on hexagonal packings locating is the cheaper below about
+  // do (docs/design/adaptive_lzb.md: on hexagonal packings locating is the cheaper below about
   // 128). 1: always within the steps; more than the impact's contacts: always located.
   std::int64_t within_steps_from = 128;
   // Contacts the observer sees (empty: all of them), until set_sampled_contacts changes them.
@@ -78,7 +78,7 @@ struct LzbAdaptiveOptions {
 // where an inelastic contact's u_j changes sign its delta_j goes on at the other rate. Both are
 // settled after the step, the contact's impulse integrated again from the turn (Gauss-Legendre
 // on the dense output), turns narrowed on the contact's own column of H. A step's work is then
-// the members', and the steps those the forces' smoothness allows (docs/model.md, section 10).
+// the members', and the steps those the forces' smoothness allows (docs/design/adaptive_lzb.md).
 class LzbAdaptiveIntegrator : public ImpactIntegrator {
  public:
   explicit LzbAdaptiveIntegrator(LzbAdaptiveOptions options = {});

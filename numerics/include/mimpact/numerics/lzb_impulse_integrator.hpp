@@ -133,7 +133,7 @@ class LzbImpulseIntegrator : public ImpactIntegrator {
   LzbOptions options_;
   Contacts contacts_;
   std::size_t initially_active_ = 0;  // how many take part at the start
-  Eigen::MatrixXd dense_;                   // H, for impacts among few contacts
+  Eigen::MatrixXd dense_;             // H, for impacts among few contacts
 };
 
 }  // namespace mimpact::numerics

@@ -17,7 +17,7 @@ namespace mimpact::numerics {
 // they part) within a step, and there its second derivative is unbounded: a Runge-Kutta step's
 // weights, exact for cubics, integrate it with an error of order h^2.5 in the velocity, where
 // a smooth force errs as h^5. A large group of a packing has a touch or a parting in almost
-// every step (docs/model.md, section 17).
+// every step (docs/design/moving_geometry.md).
 //
 // This integrates that one force again, along the separation of the two spheres over the step
 // modelled as the cubic Hermite of its values and rates at the step's ends (error O(h^4)),
@@ -91,8 +91,8 @@ struct StepSeparation {
 // largest overlap on unloading) that the step's right-hand side took at its nodes with the
 // history `max_compression` (m) it began with, against the law as it is over the step, whose
 // history changes where the overlap turns above it and where it opens (falls to `opening`, m)
-// (docs/model.md, section 17). Besides a touch and a parting, the force's corners lie where the
-// overlap crosses the history (loading meets unloading) and the unloading curve's zero; the
+// (docs/design/moving_geometry.md). Besides a touch and a parting, the force's corners lie where
+// the overlap crosses the history (loading meets unloading) and the unloading curve's zero; the
 // model is integrated between all of them, each span from its corners by the change of
 // variable above, and the history's changes are returned.
 template <std::size_t Stages>

@@ -91,7 +91,7 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   // the last error is carried across restarts (restart's last_error). 10 to
   // 25 % of a packing's attempts were rejected under the rule without its integral part (keep
   // the step for err in [1/2, 1], else 0.9 err^(-1/4)); this one takes 0.81 to 1.01 of the work
-  // at equal accuracy (docs/model.md, section 17). max_step bounds every step.
+  // at equal accuracy (docs/design/moving_geometry.md). max_step bounds every step.
   bool admit(double& h) const {
     if (max_step_ > 0.0) h = std::min(h, max_step_);
     return true;

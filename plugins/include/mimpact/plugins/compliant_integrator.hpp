@@ -54,19 +54,18 @@ struct CompliantOptions {
 // times where a contact joins, leaves or turns from loading to unloading are located (TOMS
 // 748) and the integration restarts there, so the kinks of f are never stepped over.
 //
-// The work follows the contacts taking part (docs/model.md, section 11). With linear relations,
-// a body with no force and a constant mass that touches no loaded contact moves in closed
-// form, q + v t, and costs nothing; only the bodies of the loaded contacts are integrated, as
-// displacements from where the last event left them (so a gap is a difference of small
-// numbers however far the bodies lie from the origin). A contact joins the integration when its
-// overlap reaches overlap_resolution and leaves it when the overlap falls below half of that;
-// between two bodies in free flight its join time is computed, not searched. A contact that
-// closes slower than ode.relative_tolerance times the fastest initial speed (behind a wave,
-// beads at rest approaching at the integration's own error speeds) collides instantly, u+ =
-// -e u-, instead of joining: its overlap lies below what the error control resolves, and
-// integrating it only fed those errors and kept ever more bodies in motion. With a nonlinear
-// relation every body and contact is integrated. It solves no impact problem: every contact is
-// compliant. Registered as "compliant".
+// The work follows the contacts taking part (docs/design/compliant_contacts.md). With linear
+// relations, a body with no force and a constant mass that touches no loaded contact moves in
+// closed form, q + v t, and costs nothing; only the bodies of the loaded contacts are integrated,
+// as displacements from where the last event left them (so a gap is a difference of small numbers
+// however far the bodies lie from the origin). A contact joins the integration when its overlap
+// reaches overlap_resolution and leaves it when the overlap falls below half of that; between two
+// bodies in free flight its join time is computed, not searched. A contact that closes slower than
+// ode.relative_tolerance times the fastest initial speed (behind a wave, beads at rest approaching
+// at the integration's own error speeds) collides instantly, u+ = -e u-, instead of joining: its
+// overlap lies below what the error control resolves, and integrating it only fed those errors and
+// kept ever more bodies in motion. With a nonlinear relation every body and contact is integrated.
+// It solves no impact problem: every contact is compliant. Registered as "compliant".
 class CompliantIntegrator : public kernel::OneStepIntegrator {
  public:
   using Options = CompliantOptions;

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <cstdint>
+
+#include "mimpact/numerics/contact_law.hpp"
+
+namespace mimpact::granular {
+
+// One contact that has carried force: two bodies, or a body and a wall.
+struct MovingContact {
+  std::int32_t first = 0;
+  std::int32_t second = 0;  // a body, or -1 - w for wall w
+  numerics::ContactLaw law;
+  bool joined = false;           // carries force now
+  double max_compression = 0.0;  // m, since it last closed: where it unloads from (e < 1)
+  double impulse = 0.0;          // N s, of its force over the run
+  double force = 0.0;            // N, now
+  double max_force = 0.0;        // N, and when (s)
+  double time_of_max_force = 0.0;
+  double dissipated = 0.0;     // J, lost at its turns from loading to unloading (e < 1)
+  double stored_energy = 0.0;  // J, now
+
+  bool wall() const { return second < 0; }
+  // the work the bodies have done on it so far (J), the energy ledger's sign (compression
+  // work positive): what it holds and what it lost
+  double work() const { return stored_energy + dissipated; }
+};
+
+}  // namespace mimpact::granular
