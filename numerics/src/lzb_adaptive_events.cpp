@@ -1,0 +1,105 @@
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "lzb_adaptive_impact.hpp"
+#include "mimpact/numerics/event_scan.hpp"
+#include "mimpact/numerics/root_bracketing.hpp"
+
+// The adaptive LZB's switches located as events (docs/design/adaptive_lzb.md): each member's
+// watched quantity sampled over a step and its crossings narrowed by TOMS 748 on the dense
+// output.
+namespace mimpact::numerics {
+
+using Eigen::Index;
+using namespace adaptive_lzb;  // the impact's phases, switches and constants
+
+double LzbAdaptiveIntegrator::Impact::member_value(std::size_t member, int kind,
+                                                   const State& y) const {
+  if (kind == release)
+    return y[member] * delta_scale_[members_[member]] - release_level_[members_[member]];
+  const double velocity = member_velocity(y, member);
+  switch (kind) {
+    case join:
+      return velocity + velocity_tolerance_;
+    case compression_end:
+      return -velocity;
+    default:  // reload
+      return velocity;
+  }
+}
+
+// d delta_j/dt = -u_j (compression, mono-stiffness expansion) or -u_j / e_j^2 (bi-stiffness
+// expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
+
+void LzbAdaptiveIntegrator::Impact::watch(double t, Watched& values) {
+  const State* y = &y_at_;
+  if (t == ode_.time())
+    y = &ode_.state();
+  else
+    ode_.state_at(t, y_at_);
+  values.velocity.resize(members_.size());
+  values.delta.resize(active_);
+  member_velocities(*y, values.velocity);
+  // unclamped, so that a release at delta = 0 is narrowed where delta changes sign
+  for (std::size_t a = 0; a < active_; ++a) values.delta[a] = (*y)[a] * delta_scale_[members_[a]];
+}
+
+// The quantity that is > 0 before the switch `kind` of a member and <= 0 once it happened.
+double LzbAdaptiveIntegrator::Impact::watched_value(std::size_t member, int kind,
+                                                    const Watched& values) const {
+  switch (kind) {
+    case join:
+      return values.velocity[member] + velocity_tolerance_;
+    case compression_end:
+      return -values.velocity[member];
+    case reload:
+      return values.velocity[member];
+    default:  // release
+      return values.delta[member] - release_level_[members_[member]];
+  }
+}
+
+// The switches of [t0, t1], each narrowed (TOMS 748) to a few ulp of t on the dense output.
+// Every member is on the near side of its switches when a segment starts, up to rounding.
+void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& before,
+                                           const Watched& after, std::vector<Crossing>& found) {
+  if (within_steps_) {
+    locate_turns(t0, t1, before, after);
+    return;
+  }
+  const double resolution = 4.0 * DBL_EPSILON * t1;
+  auto check = [&](std::size_t member, int kind) {
+    const double q0 = watched_value(member, kind, before);
+    const double q1 = watched_value(member, kind, after);
+    if (q1 > 0.0 || (q0 <= 0.0 && t0 != segment_start_)) return;
+    double crossing = t0;
+    if (q0 > 0.0) {
+      // this member's value alone: one column of H, not all the members' velocities (a
+      // packing keeps hundreds of contacts in the impact, and every narrowing step asked for
+      // all of them)
+      auto q = [&](double t) {
+        ode_.state_at(t, y_at_);
+        return member_value(member, kind, y_at_);
+      };
+      crossing = narrow_crossing(q, t0, t1, q0, q1, resolution).upper;
+    }
+    found.push_back({long(member), kind, crossing});
+  };
+  for (std::size_t p = 0; p < members_.size(); ++p) {
+    switch (phase_[members_[p]]) {
+      case Phase::open:
+        check(p, join);
+        break;
+      case Phase::compression:
+        check(p, compression_end);
+        break;
+      case Phase::expansion:
+        check(p, reload);
+        check(p, release);
+        break;
+    }
+  }
+}
+
+}  // namespace mimpact::numerics

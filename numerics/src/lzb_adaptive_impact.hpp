@@ -1,0 +1,190 @@
+#pragma once
+
+// The state of one adaptive LZB impact (LzbAdaptiveIntegrator::Impact), shared by its sources:
+// lzb_adaptive_integrator.cpp (segments, the right-hand side, the run), lzb_adaptive_events.cpp
+// (switches located as events) and lzb_adaptive_within_steps.cpp (switches kept within the
+// steps). docs/design/adaptive_lzb.md says how it integrates.
+
+#include <algorithm>
+#include <array>
+#include <cfloat>
+#include <cmath>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mimpact/numerics/dense_output.hpp"
+#include "mimpact/numerics/event_scan.hpp"
+#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+
+namespace mimpact::numerics::adaptive_lzb {
+
+// Where a contact is in its cycle (docs/model.md, section 10).
+enum class Phase : unsigned char { open, compression, expansion };
+
+// The switches of the right-hand side, each located as an event.
+enum EventKind : int {
+  join = 0,         // an open contact starts approaching: it enters compression at delta = 0
+  compression_end,  // u_j reaches 0 from below: delta_j is at its largest, expansion begins
+  reload,           // u_j of an expanding contact turns negative: compression again
+  release,          // delta_j reaches its release level: the contact leaves the impact
+};
+
+// Interior samples of each step searched for switches (besides its two ends). A velocity that
+// crosses 0 and back between two samples, a third of a step apart, turns within the step's
+// error: the switch it misses changes the result by about the tolerance.
+constexpr int kSamplesPerStep = 2;
+
+// The share of the tolerance allowed to each step's local error: the errors of a few hundred
+// steps add up, and the velocities and the energy must come out within the tolerance (with
+// share 1/30 a lone elastic contact at 1e-9 gained 1.3 times it; with 1/100 the extremes
+// suite's largest is 0.93 times it, at 1e-12).
+constexpr double kLocalErrorShare = 1.0 / 100.0;
+
+// Where a member's u_j changed sign within a step kept whole.
+struct Turn {
+  std::size_t member;
+  double time;
+  bool closing;  // u_j turned negative (else positive: a peak of delta_j)
+};
+
+// The watched quantities at one time: the members' velocities and the active ones' delta.
+struct Watched {
+  std::vector<double> velocity, delta;
+};
+
+}  // namespace mimpact::numerics::adaptive_lzb
+
+namespace mimpact::numerics {
+
+// The state of one impact. Contacts are members of the current segment (between two
+// switches) when they hold energy (active: their delta_j and the increment of P_j since the
+// segment began are the ODE's state, scaled to order one) or when an active one pushes them
+// (watched: open, their velocity followed to catch them joining). The other contacts do not
+// change and cost nothing.
+class LzbAdaptiveIntegrator::Impact {
+ public:
+  explicit Impact(double tolerance)
+      : ode_(adaptive_lzb::kLocalErrorShare * tolerance,
+             adaptive_lzb::kLocalErrorShare * tolerance) {}
+
+  void run(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& diagonal,
+           const Eigen::VectorXd& u_minus, const LawTable& laws, const LzbAdaptiveOptions& options,
+           ImpactSampler& sampler, ImpactObserver* observer, LzbResult& result);
+
+ private:
+  using State = DenseOutput::State;
+
+  void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
+               const LawTable& laws, const LzbAdaptiveOptions& options);
+  void begin_segment();
+  void size_segment();
+  // u of every member for the ODE state y (the increments of P applied through H's columns)
+  void member_velocities(const State& y, std::vector<double>& velocity) const;
+  void derivative(const State& y, State& dydt);
+  void watch(double t, adaptive_lzb::Watched& values);
+  void locate(double t0, double t1, const adaptive_lzb::Watched& before,
+              const adaptive_lzb::Watched& after, std::vector<Crossing>& found);
+  double watched_value(std::size_t member, int kind, const adaptive_lzb::Watched& values) const;
+  // the same for one member at the state y: its velocity from its column of H alone
+  double member_velocity(const State& y, std::size_t member) const;
+  double member_value(std::size_t member, int kind, const State& y) const;
+  // u_j of one member from its column of H alone (H is symmetric: column j holds row j, the
+  // contacts whose impulses move u_j); `impulse(a)` gives active member a's scaled P increment
+  template <class Impulse>
+  double column_velocity(std::size_t member, Impulse&& impulse) const {
+    const Eigen::Index j = members_[member];
+    double velocity = velocity_[j];
+    const int* start = H_->outerIndexPtr();
+    const int* row = H_->innerIndexPtr();
+    const double* value = H_->valuePtr();
+    for (int k = start[j]; k < start[j + 1]; ++k) {
+      const int other = member_of_[row[k]];
+      if (other >= 0 && std::size_t(other) < active_)
+        velocity += value[k] * impulse(std::size_t(other)) * impulse_scale_[row[k]];
+    }
+    return velocity;
+  }
+  void end_segment(const State& y);
+  void account_work(const State& y);
+  void apply(const std::vector<Crossing>& crossings, double t);
+  bool settled(const State& y);
+  void sample_until(double t, ImpactObserver& observer);
+  void notify(double t, const State* y, ImpactObserver& observer);
+  void finish(double t, LzbResult& result);
+
+  // An impact whose every law is continuous at the switches (e = 1, or bi-stiffness with e > 0:
+  // d delta_j/dt = -u_j or -u_j / e^2 meet where u_j = 0) keeps them within the steps
+  // (docs/design/adaptive_lzb.md): its members, the contacts holding energy or approaching and two
+  // rings of their neighbours, all carry delta_j and P_j; a contact's delta_j runs below 0 once
+  // it separates, its force K max(delta_j, 0)^eta switching off by itself, and where it
+  // approaches again (u_j turning negative, a "closing" turn) it is set back to the clamp,
+  // delta_j - delta_j(turn); where an inelastic contact's u_j changes sign, delta_j goes on at
+  // the other rate. Both are settled after the step: the contact integrated again alone from
+  // the turn.
+  void begin_within_steps_segment();
+  void locate_turns(double t0, double t1, const adaptive_lzb::Watched& before,
+                    const adaptive_lzb::Watched& after);
+  double member_velocity_at(const DenseOutput::Weights& w, std::size_t member) const;
+  // the peaks and closings of the step [t0, t1] just taken; true if one changed the state (then
+  // y_settled_ holds it)
+  bool settle_turns(double t0, double t1);
+  bool settle_member(double t0, double t1, std::span<const adaptive_lzb::Turn> turns);
+  // a contact of the outer ring holds energy or approaches: its neighbours must join
+  bool outgrown(const State& y) const;
+
+  // contact j holds energy or approaches faster than tolerance * V (at the last segment's end)
+  bool takes_part(Eigen::Index j) const {
+    return delta_[j] > 0.0 || velocity_[j] < -velocity_tolerance_;
+  }
+  double delta_of(std::size_t member, const State& y) const {
+    return std::max(y[member], 0.0) * delta_scale_[members_[member]];
+  }
+  double force(Eigen::Index j, double delta) const {
+    return stiffness_[j] * power_law(delta, exponent_[j]);
+  }
+  double energy(Eigen::Index j, double delta) const {
+    return force(j, delta) * delta / (1.0 + exponent_[j]);
+  }
+
+  const Eigen::SparseMatrix<double>* H_ = nullptr;
+  DenseOutput ode_;
+  double velocity_tolerance_ = 0.0;  // tolerance * V (m/s)
+  double sample_interval_ = 0.0;
+  std::int64_t steps_ = 0, contact_steps_ = 0;
+  double segment_start_ = 0.0, last_sample_ = 0.0, closed_impulse_sum_ = 0.0;
+
+  // per active member: d delta_j/dt = -rate u_j over the segment (1, or 1/e^2 expanding)
+  std::vector<double> rate_;
+  // per contact: law constants and scales
+  std::vector<double> stiffness_, exponent_, expansion_rate_, release_factor_;
+  std::vector<double> delta_scale_, impulse_scale_, energy_tolerance_;
+  std::vector<double> self_mobility_;     // H_jj (1/kg)
+  double local_tolerance_ = 0.0;          // a step's error share, in the state's scaled units
+  std::vector<bool> gives_nothing_back_;  // e = 0
+  // per contact: state at the start of the current segment
+  std::vector<adaptive_lzb::Phase> phase_;
+  std::vector<double> delta_, impulse_, velocity_, release_level_, max_force_, time_of_max_;
+  std::vector<double> work_;    // J, the integral of -u_j dP_j so far
+  std::vector<int> member_of_;  // the contact's place in members_, -1 if none
+  // the segment
+  std::vector<Eigen::Index> members_;  // the active contacts first, then the watched ones
+  std::size_t active_ = 0;
+  State y_, y_at_;
+  std::vector<double> rhs_velocity_, velocity_at_;
+  // per active member: its impulse increment and velocity where the work was last accounted
+  std::vector<double> accounted_impulse_, accounted_velocity_;
+  adaptive_lzb::Watched before_, after_;
+  std::vector<Eigen::Index> previous_members_;  // begin_segment's buffer
+  // within the steps (impacts whose laws are continuous at their switches)
+  bool continuous_laws_ = false;  // every contact's law continuous at its switches
+  bool within_steps_ = false;     // the current segment keeps its switches within its steps
+  std::size_t enter_within_steps_ = 0, leave_within_steps_ = 0;  // contacts taking part
+  std::vector<unsigned char> ring_;  // per member: 0 holding energy or approaching, 1, 2 around
+  std::vector<adaptive_lzb::Turn> turns_;  // by member, then time, once settle_turns sorts them
+  State y_settled_;                        // the state at a step's end with its turns settled
+  std::vector<Eigen::Index> pending_;      // non-members a member's impulse set approaching
+  ImpactSampler* sampler_ = nullptr;       // the integrator's, for the impact being integrated
+};
+
+}  // namespace mimpact::numerics
