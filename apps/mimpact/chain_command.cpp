@@ -79,6 +79,59 @@ void write_results(const nlohmann::ordered_json& summary, const granular::TimeSe
   write_output_directory(out, files);
 }
 
+// --tolerance: what to meet, from which delta_p, within which memory, for which scene file
+struct ToleranceRequest {
+  const std::vector<double>& tolerance;
+  std::optional<double> first;  // N s, --delta-p
+  const granular::RunLimits& limits;
+  const std::string& scene_file;
+};
+
+// the study that chose the scene's step rule: over the adaptive integrator's tolerance or
+// over delta_p (neither without --tolerance)
+struct Studies {
+  std::optional<analysis::ConvergenceStudy> delta_p;
+  std::optional<analysis::ToleranceStudy> tolerance;
+};
+
+// Runs the study --tolerance asks for and sets the scene's tolerance or delta_p to the one that
+// met it; throws Error, naming the scene file, when none does.
+Studies meet_tolerance(chains::ChainScene& scene, const chains::ChainModel& model,
+                       const ToleranceRequest& request) {
+  Studies studies;
+  const std::string& scene_file = request.scene_file;
+  if (request.tolerance.empty()) return studies;
+  if (!request.first && chains::uses_tolerance_study(scene)) {
+    studies.tolerance = analysis::study_tolerance(
+        chains::impact_problem(model),
+        chains::tolerance_study_options(
+            scene, {.tolerance = request.tolerance, .max_rows = 8, .limits = request.limits}));
+    const analysis::ToleranceStudy& study = *studies.tolerance;
+    if (!study.converged)
+      throw Error(scene_file + ": no tolerance down to " + to_text(study.finest_tolerance) +
+                  " met --tolerance; loosen it; no output written");
+    scene.impact.integrator = plugins::LzbIntegrator::adaptive;
+    scene.impact.tolerance = study.finest_tolerance;
+    return studies;
+  }
+  studies.delta_p = analysis::study_convergence(
+      chains::impact_problem(model), chains::convergence_options(scene, model,
+                                                                 {.tolerance = request.tolerance,
+                                                                  .first = request.first,
+                                                                  .max_rows = 12,
+                                                                  .first_name = "--delta-p",
+                                                                  .limits = request.limits}));
+  const analysis::ConvergenceStudy& study = *studies.delta_p;
+  if (!study.converged && !study.stopped.empty())
+    throw Error(scene_file + ": --tolerance not met: " + study.stopped + "; no output written");
+  if (!study.converged)
+    throw Error(scene_file + ": no delta_p down to " + to_text(study.rows.back().delta_p) +
+                " N s met --tolerance; loosen it or start smaller; no output written");
+  scene.impact.delta_p = study.rows.back().delta_p;
+  scene.impact.relative_delta_p.reset();
+  return studies;
+}
+
 }  // namespace
 
 int chain_command(const std::vector<std::string>& arguments) {
@@ -112,35 +165,11 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
   scene.impact = granular::resolve_impact(scene.impact, scene.method, overrides, scene_file);
   const bool lzb = scene.method == granular::Method::lzb;
-  std::optional<analysis::ConvergenceStudy> study;
-  std::optional<analysis::ToleranceStudy> tolerance_study;
-  if (!tolerance.empty() && !overrides.delta_p && chains::uses_tolerance_study(scene)) {
-    tolerance_study = analysis::study_tolerance(
-        chains::impact_problem(model),
-        chains::tolerance_study_options(scene,
-                                        {.tolerance = tolerance, .max_rows = 8, .limits = limits}));
-    if (!tolerance_study->converged)
-      throw Error(scene_file + ": no tolerance down to " +
-                  to_text(tolerance_study->finest_tolerance) +
-                  " met --tolerance; loosen it; no output written");
-    scene.impact.integrator = plugins::LzbIntegrator::adaptive;
-    scene.impact.tolerance = tolerance_study->finest_tolerance;
-  } else if (!tolerance.empty()) {
-    study = analysis::study_convergence(chains::impact_problem(model),
-                                        chains::convergence_options(scene, model,
-                                                                    {.tolerance = tolerance,
-                                                                     .first = overrides.delta_p,
-                                                                     .max_rows = 12,
-                                                                     .first_name = "--delta-p",
-                                                                     .limits = limits}));
-    if (!study->converged && !study->stopped.empty())
-      throw Error(scene_file + ": --tolerance not met: " + study->stopped + "; no output written");
-    if (!study->converged)
-      throw Error(scene_file + ": no delta_p down to " + to_text(study->rows.back().delta_p) +
-                  " N s met --tolerance; loosen it or start smaller; no output written");
-    scene.impact.delta_p = study->rows.back().delta_p;
-    scene.impact.relative_delta_p.reset();
-  }
+  const Studies studies = meet_tolerance(scene, model,
+                                         {.tolerance = tolerance,
+                                          .first = overrides.delta_p,
+                                          .limits = limits,
+                                          .scene_file = scene_file});
   const bool recording = !scene.record.contacts.empty() || !scene.record.bodies.empty();
   if (recording && out.empty() && !quiet)
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
@@ -160,8 +189,8 @@ int chain_command(const std::vector<std::string>& arguments) {
   const granular::ImpactOutcome& impact = run.impact;
   const granular::TimeSeries& series = run.series;
   nlohmann::ordered_json summary = chains::run_summary(model, run);
-  if (study) summary["convergence"] = chains::convergence_json(*study);
-  if (tolerance_study) summary["convergence"] = chains::tolerance_json(*tolerance_study);
+  if (studies.delta_p) summary["convergence"] = chains::convergence_json(*studies.delta_p);
+  if (studies.tolerance) summary["convergence"] = chains::tolerance_json(*studies.tolerance);
 
   if (!quiet)
     std::cerr << scene_file << ": "

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "components.hpp"
 #include "mimpact/common/error.hpp"
 #include "moving_group.hpp"
 #include "moving_world.hpp"
@@ -21,38 +22,6 @@ namespace {
 // An overlap must span this many rounding errors of the coordinates it is the difference of
 // (three significant digits).
 constexpr double kResolvedOverlap = 1e3;
-
-// Union-find over small integers, for the groups' components.
-class Components {
- public:
-  explicit Components(std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), std::int32_t(0));
-  }
-  std::int32_t find(std::int32_t i) {
-    while (parent_[std::size_t(i)] != i)
-      i = parent_[std::size_t(i)] = parent_[std::size_t(parent_[std::size_t(i)])];
-    return i;
-  }
-  void join(std::int32_t a, std::int32_t b) { parent_[std::size_t(find(a))] = find(b); }
-
- private:
-  std::vector<std::int32_t> parent_;
-};
-
-// The time in [0, horizon] at which two bodies flying freely come within `reach` of each other
-// (|between + closing t| = reach), or infinity.
-double meeting_time(const Eigen::Vector3d& between, const Eigen::Vector3d& relative, double reach,
-                    double horizon) {
-  const double b = between.dot(relative);
-  if (b >= 0.0) return INFINITY;  // not approaching
-  const double a = relative.squaredNorm();
-  const double c = between.squaredNorm() - reach * reach;
-  if (c <= 0.0) return 0.0;
-  const double discriminant = b * b - a * c;
-  if (discriminant < 0.0) return INFINITY;
-  const double t = c / (-b + std::sqrt(discriminant));  // the smaller root, without cancellation
-  return t <= horizon ? t : INFINITY;
-}
 
 }  // namespace
 
@@ -173,25 +142,6 @@ double MovingContacts::advance(double target) {
     std::tie(window_, extended_window_) = next_windows();
   }
   return time_;
-}
-
-// With nothing loaded: the earliest meeting of two bodies flying freely, no later than any of
-// them may leave its list's ball.
-double MovingContacts::next_meeting(double target) const {
-  double fastest = 0.0;
-  for (std::int32_t i : moving_)
-    fastest = std::max(fastest, world_->bodies[std::size_t(i)].v.norm());
-  double horizon = std::min(target, time_ + 0.25 * world_->lists.skin() / fastest) - time_;
-  for (std::int32_t i : moving_) {
-    const MovingBody& a = world_->bodies[std::size_t(i)];
-    for (std::int32_t k : world_->lists.bodies_near(i)) {
-      const MovingBody& b = world_->bodies[std::size_t(k)];
-      horizon = std::min(
-          horizon, meeting_time(b.position_at(time_) - a.position_at(time_), b.v - a.v,
-                                world_->geometry.radius(i) + world_->geometry.radius(k), horizon));
-    }
-  }
-  return time_ + horizon;
 }
 
 // A window restarts its groups and makes them take every body that may meet them within it:
@@ -394,106 +344,6 @@ void MovingContacts::form_groups(double end) {
     } else {
       new_group().begin(time_, members[c]);
     }
-  }
-}
-
-// The halo's own meetings: a body of the halo that may meet, flying freely, another body
-// flying freely within twice the window (the halo's margin for a body the group speeds up)
-// takes it too, and so on; as the free bodies' meetings are found (free_meetings), at the
-// joining overlap. Without them a wake body of the halo, set moving by its group, touched its
-// free neighbour and restarted the whole group to take it: a 100 x 100 packing's front group
-// of 8 000 bodies restarted 680 times at tolerance 1e-4, 3.3 M bodies restarted against 8.3 M
-// body steps (22 times on 32 x 32, 13 k against 277 k); 15 times with them, and 5.0 M body
-// steps. Pairs at rest or parting (touching beads ahead of a front) are not meetings.
-void MovingContacts::link_halo_meetings(double window, std::size_t loaded_count,
-                                        std::vector<std::int32_t>& linked,
-                                        std::vector<std::pair<std::int32_t, std::int32_t>>& pairs) {
-  const double resolution = world_->options.overlap_resolution;
-  for (std::size_t l = loaded_count; l < linked.size(); ++l) {  // linked grows as bodies join
-    const std::int32_t i = linked[l];
-    const MovingBody& a = world_->bodies[std::size_t(i)];
-    const Eigen::Vector3d x = a.position_at(time_);
-    for (std::int32_t k : world_->lists.bodies_near(i)) {
-      MovingBody& b = world_->bodies[std::size_t(k)];
-      if (b.slot >= 0 && std::size_t(b.slot) < loaded_count) continue;  // paired by its reach
-      const double t = meeting_time(
-          b.position_at(time_) - x, b.v - a.v,
-          world_->geometry.radius(i) + world_->geometry.radius(k) - resolution, 2.0 * window);
-      if (!std::isfinite(t)) continue;
-      if (b.slot < 0) {
-        b.slot = std::int32_t(linked.size());
-        linked.push_back(k);
-      }
-      pairs.emplace_back(a.slot, b.slot);
-    }
-  }
-}
-
-std::vector<MovingContacts::Meeting> MovingContacts::free_meetings(double end) const {
-  std::vector<Meeting> meetings;
-  const double horizon = end - time_;
-  const double resolution = world_->options.overlap_resolution;
-  for (std::int32_t i : moving_) {
-    const MovingBody& a = world_->bodies[std::size_t(i)];
-    if (a.owner >= 0) continue;
-    const Eigen::Vector3d x = a.position_at(time_);
-    for (std::int32_t k : world_->lists.bodies_near(i)) {
-      const MovingBody& b = world_->bodies[std::size_t(k)];
-      if (b.owner >= 0 || (k < i && b.listed_moving)) continue;
-      const double t = meeting_time(
-          b.position_at(time_) - x, b.v - a.v,
-          world_->geometry.radius(i) + world_->geometry.radius(k) - resolution, horizon);
-      if (std::isfinite(t)) meetings.push_back({time_ + t, i, k});
-    }
-    for (std::int32_t w : world_->lists.walls_near(i)) {
-      const Plane& wall = world_->geometry.walls[std::size_t(w)];
-      const double closing = -wall.normal.dot(a.v);
-      if (closing <= 0.0) continue;
-      const double gap = wall.normal.dot(x - wall.point) - world_->geometry.radius(i) + resolution;
-      const double t = std::max(0.0, gap / closing);
-      if (t <= horizon) meetings.push_back({time_ + t, i, -1 - w});
-    }
-  }
-  std::sort(meetings.begin(), meetings.end(),
-            [](const Meeting& p, const Meeting& q) { return p.time < q.time; });
-  return meetings;
-}
-
-// Bodies flying freely that meet within the window start a group at the earliest of their
-// meetings, and bodies linked by meetings start one group together: a body that meets two at
-// once was the first's alone, and taken by the other at a located event, which parted mirror
-// beads.
-void MovingContacts::form_collision_groups(const std::vector<Meeting>& meetings) {
-  // the bodies that meet, numbered by slot (-1 between windows for a body flying freely)
-  std::vector<std::int32_t> meeting;
-  auto number = [&](std::int32_t body) {
-    MovingBody& b = world_->bodies[std::size_t(body)];
-    if (b.slot >= 0) return b.slot;
-    b.slot = std::int32_t(meeting.size());
-    meeting.push_back(body);
-    return b.slot;
-  };
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-  for (const Meeting& m : meetings) {
-    const std::int32_t p = number(m.first);
-    pairs.emplace_back(p, m.second >= 0 ? number(m.second) : p);
-  }
-  Components linked(meeting.size());
-  for (const auto& [p, q] : pairs) linked.join(p, q);
-  std::vector<const Meeting*> earliest(meeting.size(), nullptr);
-  std::vector<std::vector<std::int32_t>> members(meeting.size());
-  for (const Meeting& m : meetings) {
-    const std::int32_t root = linked.find(world_->bodies[std::size_t(m.first)].slot);
-    if (!earliest[std::size_t(root)]) earliest[std::size_t(root)] = &m;
-  }
-  for (std::int32_t body : meeting)
-    members[std::size_t(linked.find(world_->bodies[std::size_t(body)].slot))].push_back(body);
-  for (std::int32_t body : meeting) world_->bodies[std::size_t(body)].slot = -1;
-  for (std::size_t root = 0; root < meeting.size(); ++root) {
-    if (members[root].empty()) continue;
-    const Meeting& first = *earliest[root];
-    new_group().begin_collision(first.time, members[root], first.first, first.second);
-    for (std::int32_t body : members[root]) note_moving(body);
   }
 }
 

@@ -208,8 +208,8 @@ bool MovingGroup::next_event(double a, double b, Event& event) {
     }
   };
   const auto found = numerics::scan_events(
-      a, b, ode.samples_per_step, ode.event_tolerance, before_, after_,
-      [&](double t, Samples& s) { measure(t, suspects_, s); }, locate);
+      {.start = a, .end = b, .samples = ode.samples_per_step, .tolerance = ode.event_tolerance},
+      before_, after_, [&](double t, Samples& s) { measure(t, suspects_, s); }, locate);
   if (found.empty()) return false;
   const auto earliest = std::min_element(
       found.begin(), found.end(), [](const auto& p, const auto& q) { return p.time < q.time; });

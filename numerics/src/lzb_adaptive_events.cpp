@@ -14,8 +14,7 @@ namespace mimpact::numerics {
 using Eigen::Index;
 using namespace adaptive_lzb;  // the impact's phases, switches and constants
 
-double LzbAdaptiveIntegrator::Impact::member_value(std::size_t member, int kind,
-                                                   const State& y) const {
+double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const State& y) const {
   if (kind == release)
     return y[member] * delta_scale_[members_[member]] - release_level_[members_[member]];
   const double velocity = member_velocity(y, member);
@@ -32,7 +31,7 @@ double LzbAdaptiveIntegrator::Impact::member_value(std::size_t member, int kind,
 // d delta_j/dt = -u_j (compression, mono-stiffness expansion) or -u_j / e_j^2 (bi-stiffness
 // expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
 
-void LzbAdaptiveIntegrator::Impact::watch(double t, Watched& values) {
+void adaptive_lzb::Impact::watch(double t, Watched& values) {
   const State* y = &y_at_;
   if (t == ode_.time())
     y = &ode_.state();
@@ -46,8 +45,8 @@ void LzbAdaptiveIntegrator::Impact::watch(double t, Watched& values) {
 }
 
 // The quantity that is > 0 before the switch `kind` of a member and <= 0 once it happened.
-double LzbAdaptiveIntegrator::Impact::watched_value(std::size_t member, int kind,
-                                                    const Watched& values) const {
+double adaptive_lzb::Impact::watched_value(std::size_t member, int kind,
+                                           const Watched& values) const {
   switch (kind) {
     case join:
       return values.velocity[member] + velocity_tolerance_;
@@ -62,8 +61,8 @@ double LzbAdaptiveIntegrator::Impact::watched_value(std::size_t member, int kind
 
 // The switches of [t0, t1], each narrowed (TOMS 748) to a few ulp of t on the dense output.
 // Every member is on the near side of its switches when a segment starts, up to rounding.
-void LzbAdaptiveIntegrator::Impact::locate(double t0, double t1, const Watched& before,
-                                           const Watched& after, std::vector<Crossing>& found) {
+void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, const Watched& after,
+                                  std::vector<Crossing>& found) {
   if (within_steps_) {
     locate_turns(t0, t1, before, after);
     return;

@@ -1,9 +1,9 @@
 #pragma once
 
-// The state of one adaptive LZB impact (LzbAdaptiveIntegrator::Impact), shared by its sources:
-// lzb_adaptive_integrator.cpp (segments, the right-hand side, the run), lzb_adaptive_events.cpp
-// (switches located as events) and lzb_adaptive_within_steps.cpp (switches kept within the
-// steps). docs/design/adaptive_lzb.md says how it integrates.
+// The state of one adaptive LZB impact (adaptive_lzb::Impact, held by LzbAdaptiveIntegrator),
+// shared by its sources: lzb_adaptive_integrator.cpp (segments, the right-hand side, the run),
+// lzb_adaptive_events.cpp (switches located as events) and lzb_adaptive_within_steps.cpp (switches
+// kept within the steps). docs/design/adaptive_lzb.md says how it integrates.
 
 #include <algorithm>
 #include <array>
@@ -15,7 +15,9 @@
 
 #include "mimpact/numerics/dense_output.hpp"
 #include "mimpact/numerics/event_scan.hpp"
-#include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+#include "mimpact/numerics/impact_integrator.hpp"
+#include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/numerics/lzb_adaptive_options.hpp"
 
 namespace mimpact::numerics::adaptive_lzb {
 
@@ -53,20 +55,15 @@ struct Watched {
   std::vector<double> velocity, delta;
 };
 
-}  // namespace mimpact::numerics::adaptive_lzb
-
-namespace mimpact::numerics {
-
 // The state of one impact. Contacts are members of the current segment (between two
 // switches) when they hold energy (active: their delta_j and the increment of P_j since the
 // segment began are the ODE's state, scaled to order one) or when an active one pushes them
 // (watched: open, their velocity followed to catch them joining). The other contacts do not
 // change and cost nothing.
-class LzbAdaptiveIntegrator::Impact {
+class Impact {
  public:
   explicit Impact(double tolerance)
-      : ode_(adaptive_lzb::kLocalErrorShare * tolerance,
-             adaptive_lzb::kLocalErrorShare * tolerance) {}
+      : ode_(kLocalErrorShare * tolerance, kLocalErrorShare * tolerance) {}
 
   void run(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& diagonal,
            const Eigen::VectorXd& u_minus, const LawTable& laws, const LzbAdaptiveOptions& options,
@@ -82,10 +79,10 @@ class LzbAdaptiveIntegrator::Impact {
   // u of every member for the ODE state y (the increments of P applied through H's columns)
   void member_velocities(const State& y, std::vector<double>& velocity) const;
   void derivative(const State& y, State& dydt);
-  void watch(double t, adaptive_lzb::Watched& values);
-  void locate(double t0, double t1, const adaptive_lzb::Watched& before,
-              const adaptive_lzb::Watched& after, std::vector<Crossing>& found);
-  double watched_value(std::size_t member, int kind, const adaptive_lzb::Watched& values) const;
+  void watch(double t, Watched& values);
+  void locate(double t0, double t1, const Watched& before, const Watched& after,
+              std::vector<Crossing>& found);
+  double watched_value(std::size_t member, int kind, const Watched& values) const;
   // the same for one member at the state y: its velocity from its column of H alone
   double member_velocity(const State& y, std::size_t member) const;
   double member_value(std::size_t member, int kind, const State& y) const;
@@ -123,13 +120,12 @@ class LzbAdaptiveIntegrator::Impact {
   // the other rate. Both are settled after the step: the contact integrated again alone from
   // the turn.
   void begin_within_steps_segment();
-  void locate_turns(double t0, double t1, const adaptive_lzb::Watched& before,
-                    const adaptive_lzb::Watched& after);
+  void locate_turns(double t0, double t1, const Watched& before, const Watched& after);
   double member_velocity_at(const DenseOutput::Weights& w, std::size_t member) const;
   // the peaks and closings of the step [t0, t1] just taken; true if one changed the state (then
   // y_settled_ holds it)
   bool settle_turns(double t0, double t1);
-  bool settle_member(double t0, double t1, std::span<const adaptive_lzb::Turn> turns);
+  bool settle_member(double t0, double t1, std::span<const Turn> turns);
   // a contact of the outer ring holds energy or approaches: its neighbours must join
   bool outgrown(const State& y) const;
 
@@ -163,7 +159,7 @@ class LzbAdaptiveIntegrator::Impact {
   double local_tolerance_ = 0.0;          // a step's error share, in the state's scaled units
   std::vector<bool> gives_nothing_back_;  // e = 0
   // per contact: state at the start of the current segment
-  std::vector<adaptive_lzb::Phase> phase_;
+  std::vector<Phase> phase_;
   std::vector<double> delta_, impulse_, velocity_, release_level_, max_force_, time_of_max_;
   std::vector<double> work_;    // J, the integral of -u_j dP_j so far
   std::vector<int> member_of_;  // the contact's place in members_, -1 if none
@@ -174,17 +170,17 @@ class LzbAdaptiveIntegrator::Impact {
   std::vector<double> rhs_velocity_, velocity_at_;
   // per active member: its impulse increment and velocity where the work was last accounted
   std::vector<double> accounted_impulse_, accounted_velocity_;
-  adaptive_lzb::Watched before_, after_;
+  Watched before_, after_;
   std::vector<Eigen::Index> previous_members_;  // begin_segment's buffer
   // within the steps (impacts whose laws are continuous at their switches)
   bool continuous_laws_ = false;  // every contact's law continuous at its switches
   bool within_steps_ = false;     // the current segment keeps its switches within its steps
   std::size_t enter_within_steps_ = 0, leave_within_steps_ = 0;  // contacts taking part
-  std::vector<unsigned char> ring_;  // per member: 0 holding energy or approaching, 1, 2 around
-  std::vector<adaptive_lzb::Turn> turns_;  // by member, then time, once settle_turns sorts them
-  State y_settled_;                        // the state at a step's end with its turns settled
-  std::vector<Eigen::Index> pending_;      // non-members a member's impulse set approaching
-  ImpactSampler* sampler_ = nullptr;       // the integrator's, for the impact being integrated
+  std::vector<unsigned char> ring_;    // per member: 0 holding energy or approaching, 1, 2 around
+  std::vector<Turn> turns_;            // by member, then time, once settle_turns sorts them
+  State y_settled_;                    // the state at a step's end with its turns settled
+  std::vector<Eigen::Index> pending_;  // non-members a member's impulse set approaching
+  ImpactSampler* sampler_ = nullptr;   // the integrator's, for the impact being integrated
 };
 
-}  // namespace mimpact::numerics
+}  // namespace mimpact::numerics::adaptive_lzb

@@ -18,9 +18,8 @@ namespace mimpact::numerics {
 using Eigen::Index;
 using namespace adaptive_lzb;  // the impact's phases, switches and constants
 
-void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
-                                            const Eigen::VectorXd& u_minus, const LawTable& laws,
-                                            const LzbAdaptiveOptions& options) {
+void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
+                                   const LawTable& laws, const LzbAdaptiveOptions& options) {
   const std::size_t m = laws.size();
   const double fastest = -u_minus.minCoeff();
   velocity_tolerance_ = options.tolerance * fastest;
@@ -82,7 +81,7 @@ void LzbAdaptiveIntegrator::Impact::prepare(const Eigen::VectorXd& diagonal,
 
 // The members of the segment that starts now: the contacts holding energy, then the open
 // contacts their forces reach through H. The ODE state starts at [delta / scale, 0].
-void LzbAdaptiveIntegrator::Impact::begin_segment() {
+void adaptive_lzb::Impact::begin_segment() {
   if (continuous_laws_) {
     std::size_t core = 0;
     auto count = [&](Index j) { core += takes_part(j); };
@@ -128,7 +127,7 @@ void LzbAdaptiveIntegrator::Impact::begin_segment() {
 }
 
 // The ODE state [delta / scale, 0] of the members that carry one, and the buffers.
-void LzbAdaptiveIntegrator::Impact::size_segment() {
+void adaptive_lzb::Impact::size_segment() {
   y_.assign(2 * active_, 0.0);
   y_at_.assign(2 * active_, 0.0);
   rate_.resize(active_);
@@ -147,7 +146,7 @@ void LzbAdaptiveIntegrator::Impact::size_segment() {
 // The contacts' work since the last accounting point, by the trapezoidal rule on u: per contact
 // an approximation of the integral of -u_j dP_j, summed over them exact, since u is linear in P
 // (the kinetic energy lost to round-off, docs/model.md section 12; docs/design/adaptive_lzb.md).
-void LzbAdaptiveIntegrator::Impact::account_work(const State& y) {
+void adaptive_lzb::Impact::account_work(const State& y) {
   member_velocities(y, velocity_at_);
   for (std::size_t a = 0; a < active_; ++a) {
     const Index j = members_[a];
@@ -159,8 +158,7 @@ void LzbAdaptiveIntegrator::Impact::account_work(const State& y) {
   }
 }
 
-void LzbAdaptiveIntegrator::Impact::member_velocities(const State& y,
-                                                      std::vector<double>& velocity) const {
+void adaptive_lzb::Impact::member_velocities(const State& y, std::vector<double>& velocity) const {
   for (std::size_t p = 0; p < members_.size(); ++p) velocity[p] = velocity_[members_[p]];
   const int* start = H_->outerIndexPtr();
   const int* row = H_->innerIndexPtr();
@@ -176,11 +174,11 @@ void LzbAdaptiveIntegrator::Impact::member_velocities(const State& y,
   }
 }
 
-double LzbAdaptiveIntegrator::Impact::member_velocity(const State& y, std::size_t member) const {
+double adaptive_lzb::Impact::member_velocity(const State& y, std::size_t member) const {
   return column_velocity(member, [&](std::size_t other) { return y[active_ + other]; });
 }
 
-void LzbAdaptiveIntegrator::Impact::derivative(const State& y, State& dydt) {
+void adaptive_lzb::Impact::derivative(const State& y, State& dydt) {
   member_velocities(y, rhs_velocity_);
   for (std::size_t a = 0; a < active_; ++a) {
     const Index j = members_[a];
@@ -190,7 +188,7 @@ void LzbAdaptiveIntegrator::Impact::derivative(const State& y, State& dydt) {
 }
 
 // Writes the members' state at the end of the segment (state y) into the per-contact arrays.
-void LzbAdaptiveIntegrator::Impact::end_segment(const State& y) {
+void adaptive_lzb::Impact::end_segment(const State& y) {
   member_velocities(y, velocity_at_);
   for (std::size_t p = 0; p < members_.size(); ++p) velocity_[members_[p]] = velocity_at_[p];
   const int* start = H_->outerIndexPtr();
@@ -221,7 +219,7 @@ void LzbAdaptiveIntegrator::Impact::end_segment(const State& y) {
   }
 }
 
-void LzbAdaptiveIntegrator::Impact::apply(const std::vector<Crossing>& crossings, double t) {
+void adaptive_lzb::Impact::apply(const std::vector<Crossing>& crossings, double t) {
   for (const Crossing& crossing : crossings) {
     const Index j = members_[std::size_t(crossing.index)];
     switch (crossing.kind) {
@@ -252,7 +250,7 @@ void LzbAdaptiveIntegrator::Impact::apply(const std::vector<Crossing>& crossings
 // The impact's end: no contact approaches faster than tolerance * V and none holds more
 // than its energy tolerance (the open ones are known to approach slower: they would have
 // joined).
-bool LzbAdaptiveIntegrator::Impact::settled(const State& y) {
+bool adaptive_lzb::Impact::settled(const State& y) {
   member_velocities(y, velocity_at_);
   for (std::size_t a = 0; a < active_; ++a) {
     const Index j = members_[a];
@@ -262,7 +260,7 @@ bool LzbAdaptiveIntegrator::Impact::settled(const State& y) {
   return true;
 }
 
-void LzbAdaptiveIntegrator::Impact::notify(double t, const State* y, ImpactObserver& observer) {
+void adaptive_lzb::Impact::notify(double t, const State* y, ImpactObserver& observer) {
   if (y) member_velocities(*y, velocity_at_);
   double impulse_sum = closed_impulse_sum_;
   if (y)
@@ -282,7 +280,7 @@ void LzbAdaptiveIntegrator::Impact::notify(double t, const State* y, ImpactObser
 }
 
 // The samples of the observer that fall in the part of the current step up to t.
-void LzbAdaptiveIntegrator::Impact::sample_until(double t, ImpactObserver& observer) {
+void adaptive_lzb::Impact::sample_until(double t, ImpactObserver& observer) {
   if (sample_interval_ <= 0.0) return;
   for (double next = last_sample_ + sample_interval_; next <= t;
        next = last_sample_ + sample_interval_) {
@@ -292,7 +290,7 @@ void LzbAdaptiveIntegrator::Impact::sample_until(double t, ImpactObserver& obser
   }
 }
 
-void LzbAdaptiveIntegrator::Impact::finish(double t, LzbResult& result) {
+void adaptive_lzb::Impact::finish(double t, LzbResult& result) {
   const std::size_t m = phase_.size();
   result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse_.data(), Index(m));
   result.work = Eigen::Map<const Eigen::VectorXd>(work_.data(), Index(m));
@@ -312,11 +310,11 @@ void LzbAdaptiveIntegrator::Impact::finish(double t, LzbResult& result) {
   result.duration = t;
 }
 
-void LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
-                                        const Eigen::VectorXd& diagonal,
-                                        const Eigen::VectorXd& u_minus, const LawTable& laws,
-                                        const LzbAdaptiveOptions& options, ImpactSampler& sampler,
-                                        ImpactObserver* observer, LzbResult& result) {
+void adaptive_lzb::Impact::run(const Eigen::SparseMatrix<double>& H,
+                               const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
+                               const LawTable& laws, const LzbAdaptiveOptions& options,
+                               ImpactSampler& sampler, ImpactObserver* observer,
+                               LzbResult& result) {
   H_ = &H;
   sampler_ = &sampler;
   prepare(diagonal, u_minus, laws, options);
@@ -349,7 +347,7 @@ void LzbAdaptiveIntegrator::Impact::run(const Eigen::SparseMatrix<double>& H,
     ++steps_;
     contact_steps_ += std::int64_t(active_);
     const std::vector<Crossing> found = scan_events(
-        step_start, ode_.time(), kSamplesPerStep + 1, 0.0, before_, after_,
+        {.start = step_start, .end = ode_.time(), .samples = kSamplesPerStep + 1}, before_, after_,
         [this](double time, Watched& v) { watch(time, v); },
         [this](double t0, double t1, const Watched& b, const Watched& a, std::vector<Crossing>& f) {
           locate(t0, t1, b, a, f);

@@ -19,7 +19,7 @@ using namespace adaptive_lzb;  // the impact's phases, switches and constants
 // The members of a segment within the steps: the contacts holding energy or approaching faster than
 // tolerance * V, then the ring of their neighbours through H, then the ring of those: a
 // contact of the first ring may load within a step, and its impulse then moves only members.
-void LzbAdaptiveIntegrator::Impact::begin_within_steps_segment() {
+void adaptive_lzb::Impact::begin_within_steps_segment() {
   for (Index j : members_) member_of_[j] = -1;
   std::vector<Index>& previous = previous_members_;
   previous.swap(members_);
@@ -54,16 +54,16 @@ void LzbAdaptiveIntegrator::Impact::begin_within_steps_segment() {
   size_segment();
 }
 
-double LzbAdaptiveIntegrator::Impact::member_velocity_at(const DenseOutput::Weights& w,
-                                                         std::size_t member) const {
+double adaptive_lzb::Impact::member_velocity_at(const DenseOutput::Weights& w,
+                                                std::size_t member) const {
   return column_velocity(member,
                          [&](std::size_t other) { return ode_.component_at(w, active_ + other); });
 }
 
 // Where a member's u_j changes sign within [t0, t1], narrowed on its own column of H: a peak
 // of delta_j (u_j turning positive) or a closing (negative).
-void LzbAdaptiveIntegrator::Impact::locate_turns(double t0, double t1, const Watched& before,
-                                                 const Watched& after) {
+void adaptive_lzb::Impact::locate_turns(double t0, double t1, const Watched& before,
+                                        const Watched& after) {
   const double resolution = 4.0 * DBL_EPSILON * t1;
   for (std::size_t p = 0; p < members_.size(); ++p) {
     const double u0 = before.velocity[p], u1 = after.velocity[p];
@@ -76,7 +76,7 @@ void LzbAdaptiveIntegrator::Impact::locate_turns(double t0, double t1, const Wat
   }
 }
 
-bool LzbAdaptiveIntegrator::Impact::settle_turns(double t0, double t1) {
+bool adaptive_lzb::Impact::settle_turns(double t0, double t1) {
   std::stable_sort(turns_.begin(), turns_.end(),
                    [](const Turn& a, const Turn& b) { return a.member < b.member; });
   if (!turns_.empty()) y_settled_ = ode_.state();
@@ -100,8 +100,7 @@ bool LzbAdaptiveIntegrator::Impact::settle_turns(double t0, double t1) {
 // neighbours' impulses as the step found them. Corrected along the step's own velocity instead,
 // a lone contact at e = 0.3 landed up to 40 times the tolerance off: the law's change moves the
 // contact's own velocity through H_jj, the largest of its column.
-bool LzbAdaptiveIntegrator::Impact::settle_member(double t0, double t1,
-                                                  std::span<const Turn> turns) {
+bool adaptive_lzb::Impact::settle_member(double t0, double t1, std::span<const Turn> turns) {
   namespace odeint = boost::numeric::odeint;
   const std::size_t p = turns.front().member;
   const Index j = members_[p];
@@ -149,7 +148,7 @@ bool LzbAdaptiveIntegrator::Impact::settle_member(double t0, double t1,
   return true;
 }
 
-bool LzbAdaptiveIntegrator::Impact::outgrown(const State& y) const {
+bool adaptive_lzb::Impact::outgrown(const State& y) const {
   for (std::size_t a = 0; a < active_; ++a)
     if (ring_[a] == 2 && (y[a] > 0.0 || y[active_ + a] != 0.0)) return true;
   return false;

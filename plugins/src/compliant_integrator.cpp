@@ -25,9 +25,9 @@ using compliant::kNever;
 using compliant::linear_gap;
 using numerics::ContactEvent;
 
-CompliantIntegrator::State::State(const numerics::OdeOptions& options)
+compliant::State::State(const numerics::OdeOptions& options)
     : dense(std::make_unique<numerics::DenseOutput>(options)) {}
-CompliantIntegrator::State::~State() = default;
+compliant::State::~State() = default;
 
 CompliantIntegrator::CompliantIntegrator(CompliantOptions options) : options_(options) {
   validate(options_, "compliant integrator");
@@ -358,7 +358,10 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
     }
   };
   const std::vector<Crossing> found =
-      numerics::scan_events(a, b, options_.ode.samples_per_step, options_.ode.event_tolerance,
+      numerics::scan_events({.start = a,
+                             .end = b,
+                             .samples = options_.ode.samples_per_step,
+                             .tolerance = options_.ode.event_tolerance},
                             s.before, s.after, watch, locate);
   double earliest = kNever;
   for (const Crossing& crossing : found)

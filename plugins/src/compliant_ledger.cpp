@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "compliant_state.hpp"
+#include "mimpact/plugins/compliant_integrator.hpp"
 
 // The compliant contacts' force and energy on their loading and unloading curves, and the energy
 // ledger: each contact's work and the forces' work, accounted at the segment ends

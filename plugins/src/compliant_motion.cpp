@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "compliant_state.hpp"
+#include "mimpact/plugins/compliant_integrator.hpp"
 
 // The moving-body set of the compliant integrator (docs/design/compliant_contacts.md): which bodies
 // are integrated and which fly freely, the contacts that join and leave, the joins computed in

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "mimpact/numerics/contact_events.hpp"
-#include "mimpact/plugins/compliant_integrator.hpp"
+#include "mimpact/numerics/ode_options.hpp"
 #include "mimpact/plugins/internal/mass_block.hpp"
 
 namespace mimpact::numerics {
@@ -76,9 +76,8 @@ struct GapSamples {
   std::vector<double> gap, rate;
 };
 
-}  // namespace compliant
-
-struct CompliantIntegrator::State {
+// The integrator's state (CompliantIntegrator holds one).
+struct State {
   using Index = kernel::Index;
   using VectorXd = kernel::VectorXd;
 
@@ -128,13 +127,12 @@ struct CompliantIntegrator::State {
   }
 };
 
-struct CompliantIntegrator::Event {
+// An event of a contact: when it joins, leaves, turns or stops separating.
+struct Event {
   kernel::Index contact = -1;
   numerics::ContactEvent kind = numerics::ContactEvent::none;
   double time = 0.0;
 };
-
-namespace compliant {
 
 // Gap and rate of contact j along the integrated state y at time t.
 template <class StateT>

@@ -269,7 +269,8 @@ bool EventDrivenIntegrator::search(double a, double b, Event& event) {
     }
   };
   const std::vector<Crossing> found = numerics::scan_events(
-      a, b, options_.ode.samples_per_step, tolerance, m.before, m.after, watch_at, locate);
+      {.start = a, .end = b, .samples = options_.ode.samples_per_step, .tolerance = tolerance},
+      m.before, m.after, watch_at, locate);
   if (found.empty()) return false;
   event = {found.front().time, {}, {}};
   for (const Crossing& crossing : found) {

@@ -115,9 +115,8 @@ double finite_result(double value, const std::string& what) {
   return value;
 }
 
-}  // namespace
-
-void bind_chains(py::module_& module) {
+// Hertz's bead mass and stiffnesses, for scenes built by hand.
+void bind_hertz(py::module_& module) {
   module.def(
       "bead_mass",
       [](double r, const py::dict& of) {
@@ -146,7 +145,10 @@ void bind_chains(py::module_& module) {
       },
       py::arg("radius"), py::arg("bead"), py::arg("wall"),
       "N/m^1.5: the same for a sphere against a flat rigid wall (R* = R)");
+}
 
+// The outcome of run_chain(), pickled to cross processes.
+void bind_chain_result(py::module_& module) {
   py::class_<ChainResult> chain_result(
       module, "ChainResult",
       "The outcome of run_chain(): arrays per body and per contact, the status, the recorded "
@@ -191,6 +193,10 @@ void bind_chains(py::module_& module) {
             r.summary = state[11].cast<py::dict>();
             return r;
           }));
+}
+
+// The runs of a chain scene: run, read, check, converge.
+void bind_chain_runs(py::module_& module) {
   module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
              py::arg("delta_p") = py::none(),
              py::arg("max_memory") = granular::RunLimits{}.memory_gb,
@@ -207,6 +213,14 @@ void bind_chains(py::module_& module) {
              "The convergence study of `mimpact converge`: the adaptive integrator's tolerance "
              "t, t/10, ... or delta_p h, h/2, ... until the post-impact velocities (and peak "
              "forces) change by at most tolerance = [eps+, eps]; returns its rows as a dict.");
+}
+
+}  // namespace
+
+void bind_chains(py::module_& module) {
+  bind_hertz(module);
+  bind_chain_result(module);
+  bind_chain_runs(module);
 }
 
 }  // namespace mimpact::python

@@ -201,9 +201,8 @@ numerics::ContactLaw contact_law(const py::kwargs& fields) {
                                                     {.name = "LzbLaw"});
 }
 
-}  // namespace
-
-void bind_kernel(py::module_& module) {
+// The bodies: DynamicalSystem and its Lagrangian kinds.
+void bind_bodies(py::module_& module) {
   py::class_<kernel::DynamicalSystem, std::shared_ptr<kernel::DynamicalSystem>>(
       module, "DynamicalSystem", "A body of the system: its coordinates q and velocities v")
       .def_property_readonly("name", &kernel::DynamicalSystem::name)
@@ -242,7 +241,10 @@ void bind_kernel(py::module_& module) {
       .def(py::init(&lagrangian_ds), py::arg("q"), py::arg("v"), py::arg("mass"), py::kw_only(),
            py::arg("internal_force") = py::none(), py::arg("external_force") = py::none(),
            py::arg("name") = "");
+}
 
+// Relations, laws, interactions and the system that holds them.
+void bind_interactions(py::module_& module) {
   py::class_<kernel::Relation, std::shared_ptr<kernel::Relation>>(module, "Relation");
   py::class_<kernel::LinearRelation, kernel::Relation, std::shared_ptr<kernel::LinearRelation>>(
       module, "LinearRelation", "the gap g = C q + e on the stacked coordinates of the bodies")
@@ -290,7 +292,10 @@ void bind_kernel(py::module_& module) {
             return self.system(k);
           },
           py::return_value_policy::reference_internal);
+}
 
+// What a run reports: impacts, contact forces, steps, the summary.
+void bind_reports(py::module_& module) {
   py::class_<kernel::ImpactReport>(module, "ImpactReport")
       .def_readonly("time", &kernel::ImpactReport::time)
       .def_readonly("interactions", &kernel::ImpactReport::interactions)
@@ -326,7 +331,10 @@ void bind_kernel(py::module_& module) {
       .def_readonly("events", &kernel::RunSummary::events)
       .def_readonly("impacts", &kernel::RunSummary::impacts)
       .def_readonly("wall_time", &kernel::RunSummary::wall_time);
+}
 
+// The generic simulation loop and its observers.
+void bind_simulation(py::module_& module) {
   py::class_<PythonSimulation>(
       module, "Simulation",
       "the generic simulation loop over a system, its integrator and problems chosen by registry "
@@ -375,6 +383,15 @@ void bind_kernel(py::module_& module) {
             return self.simulation->system();
           },
           py::return_value_policy::reference_internal);
+}
+
+}  // namespace
+
+void bind_kernel(py::module_& module) {
+  bind_bodies(module);
+  bind_interactions(module);
+  bind_reports(module);
+  bind_simulation(module);
 }
 
 }  // namespace mimpact::python

@@ -6,7 +6,7 @@
 
 #include "mimpact/chains/chain_model.hpp"
 #include "mimpact/granular/energy_ledger.hpp"
-#include "mimpact/granular/impact_outcome.hpp"
+#include "mimpact/granular/impact_runs.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::chains {

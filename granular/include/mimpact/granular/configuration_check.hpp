@@ -6,7 +6,7 @@
 
 #include "mimpact/common/fields.hpp"
 #include "mimpact/granular/contact_model.hpp"
-#include "mimpact/granular/impact_outcome.hpp"
+#include "mimpact/granular/impact_runs.hpp"
 #include "mimpact/granular/run_limits.hpp"
 
 // How far the LZB impact's frozen configuration is from the beads as they move (docs/model.md,

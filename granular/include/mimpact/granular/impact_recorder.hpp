@@ -7,6 +7,8 @@
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/granular/time_series.hpp"
+#include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/plugins/lzb_impact_options.hpp"
 
 namespace mimpact::granular {
 

@@ -7,7 +7,7 @@
 
 #include "mimpact/granular/configuration_check.hpp"
 #include "mimpact/granular/contact_model.hpp"
-#include "mimpact/granular/impact_outcome.hpp"
+#include "mimpact/granular/impact_runs.hpp"
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/granular/time_series.hpp"

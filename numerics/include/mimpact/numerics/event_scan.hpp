@@ -14,17 +14,27 @@ struct Crossing {
   double time = 0.0;
 };
 
-// The events of a motion known at every time of [a, b] (a dense output, or a motion in closed
-// form), found as the event-driven and compliant integrators find theirs: the interval is
-// cut into `samples` equal parts, the watched quantities are evaluated at each cut, and each
-// part is handed to `locate`, which narrows the crossings it sees there (TOMS 748) and
-// appends them. The search stops at the first part with a crossing, and returns the
-// crossings of that part that lie within `tolerance` of the earliest, in the order `locate`
-// appended them. `watch(t, values)` evaluates the quantities at t into `values` (a
+// Where scan_events searches: [start, end] (s) cut into `samples` equal parts; crossings within
+// `tolerance` (s) of the earliest are the same event.
+struct ScanInterval {
+  double start = 0.0, end = 0.0;
+  int samples = 1;
+  double tolerance = 0.0;
+};
+
+// The events of a motion known at every time of [a, b] = [interval.start, interval.end] (a
+// dense output, or a motion in closed form), found as the event-driven and compliant
+// integrators find theirs: the interval is cut into `samples` equal parts, the watched quantities
+// are evaluated at each cut, and each part is handed to `locate`, which narrows the crossings it
+// sees there (TOMS 748) and appends them. The search stops at the first part with a crossing, and
+// returns the crossings of that part that lie within `tolerance` of the earliest, in the order
+// `locate` appended them. `watch(t, values)` evaluates the quantities at t into `values` (a
 // caller's type, two of which the scan keeps and swaps); `locate(t0, t1, at_t0, at_t1, found)`.
 template <class Values, class Watch, class Locate>
-std::vector<Crossing> scan_events(double a, double b, int samples, double tolerance,
-                                  Values& previous, Values& next, Watch&& watch, Locate&& locate) {
+std::vector<Crossing> scan_events(const ScanInterval& interval, Values& previous, Values& next,
+                                  Watch&& watch, Locate&& locate) {
+  const double a = interval.start, b = interval.end, tolerance = interval.tolerance;
+  const int samples = interval.samples;
   std::vector<Crossing> found;
   watch(a, previous);
   double t_previous = a;

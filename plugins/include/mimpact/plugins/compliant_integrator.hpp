@@ -66,6 +66,11 @@ struct CompliantOptions {
 // overlap lies below what the error control resolves, and integrating it only fed those errors and
 // kept ever more bodies in motion. With a nonlinear relation every body and contact is integrated.
 // It solves no impact problem: every contact is compliant. Registered as "compliant".
+namespace compliant {
+struct State;  // the integration's state and its bodies and contacts (src/compliant_state.hpp)
+struct Event;
+}  // namespace compliant
+
 class CompliantIntegrator : public kernel::OneStepIntegrator {
  public:
   using Options = CompliantOptions;
@@ -91,8 +96,8 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   kernel::Index most_bodies_in_motion() const;
 
  private:
-  struct State;
-  struct Event;
+  using State = compliant::State;
+  using Event = compliant::Event;
   // the phases of an advance
   void take_step();
   // the earliest contact event in [a, b] of the current step, if any

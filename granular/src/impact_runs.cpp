@@ -1,4 +1,4 @@
-#include "mimpact/granular/impact_outcome.hpp"
+#include "mimpact/granular/impact_runs.hpp"
 
 #include <algorithm>
 #include <chrono>
