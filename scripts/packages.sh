@@ -4,7 +4,7 @@
 BUILD_PACKAGES=(cmake make g++ libeigen3-dev libboost-dev libboost-program-options-dev
                 libsuitesparse-dev nlohmann-json3-dev
                 python3-dev pybind11-dev python3-numpy)  # the Python module
-TEST_PACKAGES=(libgtest-dev libbenchmark-dev clang-format python3-pytest python3-scipy
+TEST_PACKAGES=(libgtest-dev libbenchmark-dev clang-format universal-ctags python3-pytest python3-scipy
                python3-distributed python3-matplotlib python3-meshio
                python3-vtk9 xvfb xauth)  # the ParaView recipe rendered headless
 

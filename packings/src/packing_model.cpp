@@ -17,6 +17,7 @@
 #include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/numerics/delassus.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
+#include "packing_beads.hpp"
 
 namespace mimpact::packings {
 
@@ -29,24 +30,6 @@ using Point = bg::model::point<double, 3, bg::cs::cartesian>;
 using Box = bg::model::box<Point>;
 using Entry = std::pair<Point, Eigen::Index>;
 using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
-
-struct Body {
-  Vector centre;
-  double radius;
-  granular::Material material;
-  Vector velocity = Vector::Zero(centre.size());
-  std::size_t line = 0;  // of a listed bead, in its file (for messages); 0: not listed
-};
-
-// the first `dimension` of these components
-Vector vector_of(std::initializer_list<double> components, int dimension) {
-  Vector v(dimension);
-  std::copy_n(components.begin(), dimension, v.data());
-  return v;
-}
-Vector vector_of(const std::vector<double>& components) {
-  return Eigen::Map<const Eigen::VectorXd>(components.data(), Eigen::Index(components.size()));
-}
 
 // the R-tree's point of `centre`, shifted by `by` along every axis
 Point point_of(const Vector& centre, double by = 0.0) {
@@ -64,136 +47,6 @@ std::string bead_name(const PackingModel& model, Eigen::Index body) {
   return "bead " + std::to_string(body) + " (" + layer + "row " +
          std::to_string(model.layers > 0 ? row % model.rows : row) + ", column " +
          std::to_string(body % model.columns) + ")";
-}
-
-std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
-  std::vector<Body> beads;
-  const double a = lattice.radius;
-  const int d = lattice_dimension(lattice.type);
-  const bool close_packed =
-      lattice.type != LatticeType::square && lattice.type != LatticeType::simple_cubic;
-  const double row_pitch = close_packed ? std::sqrt(3.0) * a : 2.0 * a;
-  const double layer_pitch = close_packed ? 2.0 * std::sqrt(2.0 / 3.0) * a : 2.0 * a;
-  // the layers' stacking: FCC shifts each layer by (a, a / sqrt(3)) from the one below, three
-  // positions in turn; HCP alternates two
-  const int positions = lattice.type == LatticeType::fcc   ? 3
-                        : lattice.type == LatticeType::hcp ? 2
-                                                           : 1;
-  const int layers = std::max(lattice.layers, 1);
-  beads.reserve(std::size_t(layers) * std::size_t(lattice.rows) * std::size_t(lattice.columns));
-  for (int l = 0; l < layers; ++l) {
-    const double stacking = double(l % positions);
-    for (int r = 0; r < lattice.rows; ++r)
-      for (int c = 0; c < lattice.columns; ++c) {
-        const double shift = close_packed && r % 2 == 1 ? a : 0.0;
-        beads.push_back({vector_of({2.0 * a * c + shift + stacking * a,
-                                    row_pitch * r + stacking * a / std::sqrt(3.0), layer_pitch * l},
-                                   d),
-                         a, lattice.material});
-      }
-  }
-  return beads;
-}
-
-// The memory a bead takes with its contacts (a bead touches 3 others on average in the plane, 6
-// in space)
-double bead_bytes(int dimension) {
-  return granular::model_bytes(1.0, 3.0 * (dimension - 1), dimension);
-}
-
-// The bead list's file: inside `directory` (the scene's, or --data-dir), a regular file. Its
-// path is the scene's, so messages may name it; its content is never echoed.
-std::filesystem::path bead_file(const BeadListSpec& list, const std::filesystem::path& directory) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  const fs::path root = fs::weakly_canonical(fs::absolute(directory, error), error);
-  const fs::path path = fs::weakly_canonical(fs::absolute(directory / list.file, error), error);
-  const auto [outside, _] = std::mismatch(root.begin(), root.end(), path.begin(), path.end());
-  if (list.file.empty() || outside != root.end())
-    throw InvalidInput("beads.file = " + kernel::json_excerpt(nlohmann::json(list.file)) +
-                       " is not inside " + root.string() +
-                       "; allowed: a file in the scene's directory or below it (--data-dir, or "
-                       "data_dir= in Python, chooses another directory)");
-  const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) throw InvalidInput("beads.file: " + path.string() + " does not exist");
-  if (!fs::is_regular_file(status))
-    throw InvalidInput("beads.file: " + path.string() +
-                       " is not a regular file (a directory, device or pipe); allowed: a CSV file");
-  return path;
-}
-
-// "x,y,radius": the header of these columns
-std::string line_of(const char* const* names, int columns) {
-  std::string line = names[0];
-  for (int k = 1; k < columns; ++k) (line += ",") += names[k];
-  return line;
-}
-
-// A cell of the list as a number: the whole cell, spaces aside, and finite.
-std::optional<double> number_of(std::string cell) {
-  const std::size_t first = cell.find_first_not_of(" \t\r");
-  const std::size_t last = cell.find_last_not_of(" \t\r");
-  if (first == std::string::npos) return std::nullopt;
-  cell = cell.substr(first, last - first + 1);
-  char* end = nullptr;
-  const double value = std::strtod(cell.c_str(), &end);
-  if (end != cell.c_str() + cell.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
-// "x,y,radius" (the plane) or "x,y,z,radius" (space), then one bead per line. Messages name the
-// line and column, never their content (a scene from elsewhere must not make mimpact show a
-// file's lines).
-std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory,
-                               const granular::RunLimits& limits) {
-  const std::filesystem::path path = bead_file(list, directory);
-  std::ifstream in(path);
-  if (!in) throw InvalidInput("beads.file: cannot open " + path.string() + " for reading");
-  auto fail = [&](std::size_t line, const std::string& what) -> void {
-    throw InvalidInput(path.string() + " line " + std::to_string(line) + ": " + what);
-  };
-  std::string line;
-  std::getline(in, line);
-  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
-  if (line.find_last_not_of(" \t\r") != std::string::npos)
-    line.erase(line.find_last_not_of(" \t\r") + 1);
-  if (line != "x,y,radius" && line != "x,y,z,radius")
-    fail(1, "is not the header; allowed: x,y,radius or x,y,z,radius (m)");
-  const int dimension = line == "x,y,radius" ? 2 : 3;
-  const int columns = dimension + 1;
-  static const char* const kNames[2][4] = {{"x", "y", "radius"}, {"x", "y", "z", "radius"}};
-  const char* const* names = kNames[dimension - 2];
-  std::vector<Body> beads;
-  for (std::size_t number = 2; std::getline(in, line); ++number) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::istringstream fields(line);
-    std::string cell;
-    double values[4];
-    int count = 0;
-    for (; std::getline(fields, cell, ','); ++count) {
-      if (count == columns)
-        fail(number, "more than " + std::to_string(columns) +
-                         " columns; allowed: " + line_of(names, columns));
-      const std::optional<double> value = number_of(cell);
-      if (!value) fail(number, std::string("column ") + names[count] + " is not a finite number");
-      values[count] = *value;
-    }
-    if (count != columns)
-      fail(number, std::to_string(count) + " columns; allowed: " + line_of(names, columns));
-    const double radius = values[dimension];
-    if (!(radius > 0.0)) fail(number, invalid_value_message("radius", radius, "> 0 (m)"));
-    beads.push_back({.centre = vector_of({values[0], values[1], values[2]}, dimension),
-                     .radius = radius,
-                     .material = list.material,
-                     .line = number});
-    if (beads.size() % 100'000 == 0)
-      granular::check_memory(double(beads.size()) * bead_bytes(dimension),
-                             "beads.file (" + std::to_string(beads.size()) + " beads so far)",
-                             limits);
-  }
-  if (beads.empty())
-    throw InvalidInput(path.string() + ": the bead list is empty; allowed: at least one bead");
-  return beads;
 }
 
 Tree index_of(const std::vector<Body>& bodies) {

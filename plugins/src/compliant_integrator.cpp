@@ -372,17 +372,6 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
   return next_predicted_join(a, std::min(b, earliest), event) || earliest != kNever;
 }
 
-bool CompliantIntegrator::next_predicted_join(double a, double b, Event& event) {
-  State& s = *state_;
-  while (!s.predictions.empty() &&
-         s.predictions.top().version != s.contact(s.predictions.top().contact).version)
-    s.predictions.pop();
-  if (s.predictions.empty() || s.predictions.top().time > b) return false;
-  event = {s.predictions.top().contact, ContactEvent::joining,
-           std::max(a, s.predictions.top().time)};
-  return true;
-}
-
 void CompliantIntegrator::end_segment(double end) {
   State& s = *state_;
   s.dense->state_at(end, s.y);

@@ -178,4 +178,17 @@ bool CompliantIntegrator::collide_instantly(Index j) {
   return true;
 }
 
+// The earliest join computed between bodies in free flight in [a, b], its stale predictions
+// (of contacts whose motion changed since) dropped.
+bool CompliantIntegrator::next_predicted_join(double a, double b, Event& event) {
+  State& s = *state_;
+  while (!s.predictions.empty() &&
+         s.predictions.top().version != s.contact(s.predictions.top().contact).version)
+    s.predictions.pop();
+  if (s.predictions.empty() || s.predictions.top().time > b) return false;
+  event = {s.predictions.top().contact, numerics::ContactEvent::joining,
+           std::max(a, s.predictions.top().time)};
+  return true;
+}
+
 }  // namespace mimpact::plugins

@@ -1,0 +1,141 @@
+#include "packing_beads.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "mimpact/common/error.hpp"
+#include "mimpact/kernel/json_document.hpp"
+
+namespace mimpact::packings {
+
+std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
+  std::vector<Body> beads;
+  const double a = lattice.radius;
+  const int d = lattice_dimension(lattice.type);
+  const bool close_packed =
+      lattice.type != LatticeType::square && lattice.type != LatticeType::simple_cubic;
+  const double row_pitch = close_packed ? std::sqrt(3.0) * a : 2.0 * a;
+  const double layer_pitch = close_packed ? 2.0 * std::sqrt(2.0 / 3.0) * a : 2.0 * a;
+  // the layers' stacking: FCC shifts each layer by (a, a / sqrt(3)) from the one below, three
+  // positions in turn; HCP alternates two
+  const int positions = lattice.type == LatticeType::fcc   ? 3
+                        : lattice.type == LatticeType::hcp ? 2
+                                                           : 1;
+  const int layers = std::max(lattice.layers, 1);
+  beads.reserve(std::size_t(layers) * std::size_t(lattice.rows) * std::size_t(lattice.columns));
+  for (int l = 0; l < layers; ++l) {
+    const double stacking = double(l % positions);
+    for (int r = 0; r < lattice.rows; ++r)
+      for (int c = 0; c < lattice.columns; ++c) {
+        const double shift = close_packed && r % 2 == 1 ? a : 0.0;
+        beads.push_back({vector_of({2.0 * a * c + shift + stacking * a,
+                                    row_pitch * r + stacking * a / std::sqrt(3.0), layer_pitch * l},
+                                   d),
+                         a, lattice.material});
+      }
+  }
+  return beads;
+}
+
+double bead_bytes(int dimension) {
+  return granular::model_bytes(1.0, 3.0 * (dimension - 1), dimension);
+}
+
+std::filesystem::path bead_file(const BeadListSpec& list, const std::filesystem::path& directory) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path root = fs::weakly_canonical(fs::absolute(directory, error), error);
+  const fs::path path = fs::weakly_canonical(fs::absolute(directory / list.file, error), error);
+  const auto [outside, _] = std::mismatch(root.begin(), root.end(), path.begin(), path.end());
+  if (list.file.empty() || outside != root.end())
+    throw InvalidInput("beads.file = " + kernel::json_excerpt(nlohmann::json(list.file)) +
+                       " is not inside " + root.string() +
+                       "; allowed: a file in the scene's directory or below it (--data-dir, or "
+                       "data_dir= in Python, chooses another directory)");
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw InvalidInput("beads.file: " + path.string() + " does not exist");
+  if (!fs::is_regular_file(status))
+    throw InvalidInput("beads.file: " + path.string() +
+                       " is not a regular file (a directory, device or pipe); allowed: a CSV file");
+  return path;
+}
+
+namespace {
+
+// "x,y,radius": the header of these columns
+std::string line_of(const char* const* names, int columns) {
+  std::string line = names[0];
+  for (int k = 1; k < columns; ++k) (line += ",") += names[k];
+  return line;
+}
+
+// A cell of the list as a number: the whole cell, spaces aside, and finite.
+std::optional<double> number_of(std::string cell) {
+  const std::size_t first = cell.find_first_not_of(" \t\r");
+  const std::size_t last = cell.find_last_not_of(" \t\r");
+  if (first == std::string::npos) return std::nullopt;
+  cell = cell.substr(first, last - first + 1);
+  char* end = nullptr;
+  const double value = std::strtod(cell.c_str(), &end);
+  if (end != cell.c_str() + cell.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory,
+                               const granular::RunLimits& limits) {
+  const std::filesystem::path path = bead_file(list, directory);
+  std::ifstream in(path);
+  if (!in) throw InvalidInput("beads.file: cannot open " + path.string() + " for reading");
+  auto fail = [&](std::size_t line, const std::string& what) -> void {
+    throw InvalidInput(path.string() + " line " + std::to_string(line) + ": " + what);
+  };
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
+  if (line.find_last_not_of(" \t\r") != std::string::npos)
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+  if (line != "x,y,radius" && line != "x,y,z,radius")
+    fail(1, "is not the header; allowed: x,y,radius or x,y,z,radius (m)");
+  const int dimension = line == "x,y,radius" ? 2 : 3;
+  const int columns = dimension + 1;
+  static const char* const kNames[2][4] = {{"x", "y", "radius"}, {"x", "y", "z", "radius"}};
+  const char* const* names = kNames[dimension - 2];
+  std::vector<Body> beads;
+  for (std::size_t number = 2; std::getline(in, line); ++number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream fields(line);
+    std::string cell;
+    double values[4];
+    int count = 0;
+    for (; std::getline(fields, cell, ','); ++count) {
+      if (count == columns)
+        fail(number, "more than " + std::to_string(columns) +
+                         " columns; allowed: " + line_of(names, columns));
+      const std::optional<double> value = number_of(cell);
+      if (!value) fail(number, std::string("column ") + names[count] + " is not a finite number");
+      values[count] = *value;
+    }
+    if (count != columns)
+      fail(number, std::to_string(count) + " columns; allowed: " + line_of(names, columns));
+    const double radius = values[dimension];
+    if (!(radius > 0.0)) fail(number, invalid_value_message("radius", radius, "> 0 (m)"));
+    beads.push_back({.centre = vector_of({values[0], values[1], values[2]}, dimension),
+                     .radius = radius,
+                     .material = list.material,
+                     .line = number});
+    if (beads.size() % 100'000 == 0)
+      granular::check_memory(double(beads.size()) * bead_bytes(dimension),
+                             "beads.file (" + std::to_string(beads.size()) + " beads so far)",
+                             limits);
+  }
+  if (beads.empty())
+    throw InvalidInput(path.string() + ": the bead list is empty; allowed: at least one bead");
+  return beads;
+}
+
+}  // namespace mimpact::packings

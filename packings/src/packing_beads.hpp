@@ -1,0 +1,55 @@
+#pragma once
+
+// Where a packing's beads come from (packing_model.cpp builds the model from them): a lattice's
+// sites, or a bead list's lines.
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cstddef>
+#include <filesystem>
+#include <initializer_list>
+#include <vector>
+
+#include "mimpact/granular/run_limits.hpp"
+#include "mimpact/packings/packing_model.hpp"
+#include "mimpact/packings/packing_scene.hpp"
+
+namespace mimpact::packings {
+
+// A bead or striker as the scene gives it.
+struct Body {
+  Vector centre;
+  double radius;
+  granular::Material material;
+  Vector velocity = Vector::Zero(centre.size());
+  std::size_t line = 0;  // of a listed bead, in its file (for messages); 0: not listed
+};
+
+// the first `dimension` of these components
+inline Vector vector_of(std::initializer_list<double> components, int dimension) {
+  Vector v(dimension);
+  std::copy_n(components.begin(), dimension, v.data());
+  return v;
+}
+inline Vector vector_of(const std::vector<double>& components) {
+  return Eigen::Map<const Eigen::VectorXd>(components.data(), Eigen::Index(components.size()));
+}
+
+// The memory a bead takes with its contacts (a bead touches 3 others on average in the plane, 6
+// in space)
+double bead_bytes(int dimension);
+
+// the lattice's sites, row by row (and layer by layer)
+std::vector<Body> lattice_beads(const LatticeSpec& lattice);
+
+// "x,y,radius" (the plane) or "x,y,z,radius" (space), then one bead per line. Messages name the
+// line and column, never their content (a scene from elsewhere must not make mimpact show a
+// file's lines).
+std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory,
+                               const granular::RunLimits& limits);
+
+// The bead list's file: inside `directory` (the scene's, or --data-dir), a regular file. Its
+// path is the scene's, so messages may name it; its content is never echoed.
+std::filesystem::path bead_file(const BeadListSpec& list, const std::filesystem::path& directory);
+
+}  // namespace mimpact::packings
