@@ -169,8 +169,10 @@ class MovingGroup {
                         const State& end_rate, double h, std::span<const std::size_t> switching);
   // spring j's separation (m), its rate times h and, given the state's derivative dydt, its
   // acceleration times h^2 (m) along the state y (a wall's: from the bead to its plane)
-  void spring_separation(std::size_t j, const double* y, const double* dydt, double h,
-                         Eigen::Vector3d& r, Eigen::Vector3d& u, Eigen::Vector3d& a) const;
+  struct Separation {
+    Eigen::Vector3d r, u, a;  // m: the separation, its rate times h, its acceleration times h^2
+  };
+  Separation spring_separation(std::size_t j, const double* y, const double* dydt, double h) const;
   // the history changes up to t taken into the springs and contacts
   void settle_histories(double t);
   static double stored_energy(const Contact& c);

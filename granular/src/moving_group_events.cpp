@@ -14,14 +14,17 @@ using numerics::ContactEvent;
 
 namespace {
 
-// gap (m) and rate (m/s) of a sphere at xa moving at va against one at xb moving at vb, the
-// two touching at distance `reach`
-void sphere_gap(const Eigen::Vector3d& xa, const Eigen::Vector3d& va, const Eigen::Vector3d& xb,
-                const Eigen::Vector3d& vb, double reach, double& gap, double& rate) {
+struct GapRate {
+  double gap, rate;  // m, m/s
+};
+
+// gap and rate of a sphere at xa moving at va against one at xb moving at vb, the two touching
+// at distance `reach`
+GapRate sphere_gap(const Eigen::Vector3d& xa, const Eigen::Vector3d& va, const Eigen::Vector3d& xb,
+                   const Eigen::Vector3d& vb, double reach) {
   const Eigen::Vector3d between = xb - xa;
   const double distance = between.norm();
-  gap = distance - reach;
-  rate = between.dot(vb - va) / distance;
+  return {distance - reach, between.dot(vb - va) / distance};
 }
 
 // The cubic Hermite of a gap over a step of length h (s = (t - t0) / h in [0, 1]), from its gaps
@@ -100,10 +103,11 @@ void MovingGroup::watch_gap(const Watch& w, double t, const double* y, double& g
   Eigen::Vector3d xa, va;
   member_state(std::size_t(w.member), y, xa, va);
   const MovingBody& o = world_.bodies[std::size_t(w.other)];
-  sphere_gap(
+  const GapRate between = sphere_gap(
       xa, va, o.position_at(t), o.v,
-      world_.geometry.radius(members_[std::size_t(w.member)]) + world_.geometry.radius(w.other),
-      gap, rate);
+      world_.geometry.radius(members_[std::size_t(w.member)]) + world_.geometry.radius(w.other));
+  gap = between.gap;
+  rate = between.rate;
 }
 
 // The member a watched body's entry reads, written into probe_ from the dense output at w's

@@ -41,11 +41,12 @@ double MovingGroup::amend_switches(const State& start, const State& start_rate, 
         std::abs(impulses[j] - start[2 * velocities + j]) < negligible)
       continue;
     const auto a = std::size_t(s.first), b = std::size_t(s.second);
-    Eigen::Vector3d r0, u0, r1, u1, unused;
-    spring_separation(j, start.data(), nullptr, h, r0, u0, unused);
-    spring_separation(j, end.data(), nullptr, h, r1, u1, unused);
-    const numerics::OnsetQuadrature missed = numerics::hertz_onset_quadrature(
-        r0, u0, r1, u1, spring_reach_[j], spring_stiffness_[j], nodes, velocity_weights);
+    const Separation s0 = spring_separation(j, start.data(), nullptr, h);
+    const Separation s1 = spring_separation(j, end.data(), nullptr, h);
+    const Eigen::Vector3d &r0 = s0.r, &u0 = s0.u, &r1 = s1.r, &u1 = s1.u;
+    const numerics::OnsetQuadrature missed =
+        numerics::hertz_onset_quadrature({.r0 = r0, .u0 = u0, .r1 = r1, .u1 = u1}, spring_reach_[j],
+                                         spring_stiffness_[j], nodes, velocity_weights);
     for (std::size_t k = 0; k < d; ++k) {
       end[velocities + d * a + k] -= gain_[a] * h * missed.impulse(k);
       end[velocities + d * b + k] += gain_[b] * h * missed.impulse(k);
@@ -71,8 +72,10 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
     if (aside.law.effective_restitution() >= 1.0) continue;
     const auto j = std::size_t(aside.spring);
     numerics::StepSeparation model{.quintic = true};
-    spring_separation(j, start.data(), start_rate.data(), h, model.r0, model.u0, model.a0);
-    spring_separation(j, end.data(), end_rate.data(), h, model.r1, model.u1, model.a1);
+    const Separation s0 = spring_separation(j, start.data(), start_rate.data(), h);
+    const Separation s1 = spring_separation(j, end.data(), end_rate.data(), h);
+    model.r0 = s0.r, model.u0 = s0.u, model.a0 = s0.a;
+    model.r1 = s1.r, model.u1 = s1.u, model.a1 = s1.a;
     const double reach = spring_reach_[j], overlap0 = reach - model.r0.norm(),
                  overlap1 = reach - model.r1.norm(), history = aside.max_compression;
     const bool closing0 = model.r0.dot(model.u0) < 0.0, closing1 = model.r1.dot(model.u1) < 0.0;
@@ -85,7 +88,8 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
         !(history > 0.0 && (crosses(history) || crosses(leave))))
       continue;
     const numerics::OnsetQuadrature missed = numerics::contact_step_quadrature(
-        model, reach, aside.law, history, leave, nodes, velocity_weights, position_weights);
+        model, {.reach = reach, .law = aside.law, .max_compression = history, .opening = leave},
+        numerics::StepQuadrature<nodes.size()>{nodes, velocity_weights, position_weights});
     const bool changed = missed.change_count > 0;
     const double share = turn_cut(j, aside.law, missed, overlap1, h);
     if (share < 1.0) {
@@ -152,9 +156,10 @@ double MovingGroup::turn_cut(std::size_t j, const numerics::ContactLaw& law,
              : kPastTheTurn * turn->s;
 }
 
-void MovingGroup::spring_separation(std::size_t j, const double* y, const double* dydt, double h,
-                                    Eigen::Vector3d& r, Eigen::Vector3d& u,
-                                    Eigen::Vector3d& a) const {
+MovingGroup::Separation MovingGroup::spring_separation(std::size_t j, const double* y,
+                                                       const double* dydt, double h) const {
+  Separation out;
+  Eigen::Vector3d &r = out.r, &u = out.u, &a = out.a;
   const auto d = std::size_t(dimension_);
   const std::size_t velocities = d * members_.size();
   // w = T v, w' = T x'': h w / T and h^2 w' / T
@@ -172,7 +177,7 @@ void MovingGroup::spring_separation(std::size_t j, const double* y, const double
     r = -height * s.offset;
     u = -to_rate * speed * s.offset;
     a = -to_acceleration * pull * s.offset;
-    return;
+    return out;
   }
   const std::size_t second = d * std::size_t(s.second);
   r = s.offset;
@@ -183,6 +188,7 @@ void MovingGroup::spring_separation(std::size_t j, const double* y, const double
     if (dydt)
       a(k) = to_acceleration * (dydt[velocities + second + k] - dydt[velocities + first + k]);
   }
+  return out;
 }
 
 // J: what contact c would give back from where it is, its potential on its curve less, past

@@ -65,8 +65,7 @@ class Impact {
   explicit Impact(double tolerance)
       : ode_(kLocalErrorShare * tolerance, kLocalErrorShare * tolerance) {}
 
-  void run(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& diagonal,
-           const Eigen::VectorXd& u_minus, const LawTable& laws, const LzbAdaptiveOptions& options,
+  void run(const ImpactIntegrator::Input& input, const LzbAdaptiveOptions& options,
            ImpactSampler& sampler, ImpactObserver* observer, LzbResult& result);
 
  private:

@@ -310,14 +310,13 @@ void adaptive_lzb::Impact::finish(double t, LzbResult& result) {
   result.duration = t;
 }
 
-void adaptive_lzb::Impact::run(const Eigen::SparseMatrix<double>& H,
-                               const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
-                               const LawTable& laws, const LzbAdaptiveOptions& options,
-                               ImpactSampler& sampler, ImpactObserver* observer,
-                               LzbResult& result) {
-  H_ = &H;
+void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
+                               const LzbAdaptiveOptions& options, ImpactSampler& sampler,
+                               ImpactObserver* observer, LzbResult& result) {
+  const Eigen::VectorXd& u_minus = input.u_minus;
+  H_ = &input.H;
   sampler_ = &sampler;
-  prepare(diagonal, u_minus, laws, options);
+  prepare(input.diagonal, u_minus, input.laws, options);
   begin_segment();
   // the first step: a small share of the time the fastest contact takes to stop
   double first_step = 1.0;
@@ -414,8 +413,7 @@ Eigen::VectorXd LzbAdaptiveIntegrator::velocity_resolution(const Eigen::VectorXd
 
 void LzbAdaptiveIntegrator::run(const Input& input, ImpactObserver* observer, LzbResult& result) {
   if (!impact_) impact_ = std::make_unique<Impact>(options_.tolerance);
-  impact_->run(input.H, input.diagonal, input.u_minus, input.laws, options_, sampler(), observer,
-               result);
+  impact_->run(input, options_, sampler(), observer, result);
 }
 
 }  // namespace mimpact::numerics

@@ -41,8 +41,9 @@ TEST(OnsetQuadrature, MatchesTheClosedFormOfALinearApproach) {
   for (double onset : {0.0, 0.13, 0.5, 0.87}) {
     const double w = 2e-6;
     const Eigen::Vector3d r0 = (kReach + onset * w) * axis, u = -w * axis, r1 = r0 + u;
-    const OnsetQuadrature missed = hertz_onset_quadrature(r0, u, r1, u, kReach, kStiffness,
-                                                          rkn43::nodes, rkn43::velocity_weights);
+    const OnsetQuadrature missed =
+        hertz_onset_quadrature({.r0 = r0, .u0 = u, .r1 = r1, .u1 = u}, kReach, kStiffness,
+                               rkn43::nodes, rkn43::velocity_weights);
     const double exact = kStiffness * std::pow(w, 1.5) * std::pow(1.0 - onset, 2.5) / 2.5;
     const double by_weights = weighted([&](double s) { return Eigen::Vector3d(r0 + s * u); });
     // the overlaps are differences of lengths 5 000 times larger: rounded to ~1e-12 of theirs
@@ -64,8 +65,9 @@ TEST(OnsetQuadrature, MatchesAnAdaptiveQuadratureOfAGrazingTouch) {
     return (2 * s3 - 3 * s2 + 1) * r0 + (s3 - 2 * s2 + s) * u0 + (3 * s2 - 2 * s3) * r1 +
            (s3 - s2) * u1;
   };
-  const OnsetQuadrature missed = hertz_onset_quadrature(r0, u0, r1, u1, kReach, kStiffness,
-                                                        rkn43::nodes, rkn43::velocity_weights);
+  const OnsetQuadrature missed =
+      hertz_onset_quadrature({.r0 = r0, .u0 = u0, .r1 = r1, .u1 = u1}, kReach, kStiffness,
+                             rkn43::nodes, rkn43::velocity_weights);
   ASSERT_GT(hertz(separation(0.5)), 0.0);
   ASSERT_EQ(hertz(separation(0.0)) + hertz(separation(1.0)), 0.0);
   boost::math::quadrature::tanh_sinh<double> adaptive;
@@ -95,10 +97,12 @@ struct AmendedCollision : Collision {
   void amend(const std::vector<double>& y0, const std::vector<double>&, std::vector<double>& y1,
              const std::vector<double>&, double h, std::span<const std::size_t> switching) const {
     if (switching.empty()) return;
-    const OnsetQuadrature missed = hertz_onset_quadrature(
-        Eigen::Vector3d(y0[1] - y0[0], 0, 0), Eigen::Vector3d(h * (y0[3] - y0[2]), 0, 0),
-        Eigen::Vector3d(y1[1] - y1[0], 0, 0), Eigen::Vector3d(h * (y1[3] - y1[2]), 0, 0), kReach,
-        kStiffness, rkn43::nodes, rkn43::velocity_weights);
+    const OnsetQuadrature missed =
+        hertz_onset_quadrature({.r0 = Eigen::Vector3d(y0[1] - y0[0], 0, 0),
+                                .u0 = Eigen::Vector3d(h * (y0[3] - y0[2]), 0, 0),
+                                .r1 = Eigen::Vector3d(y1[1] - y1[0], 0, 0),
+                                .u1 = Eigen::Vector3d(h * (y1[3] - y1[2]), 0, 0)},
+                               kReach, kStiffness, rkn43::nodes, rkn43::velocity_weights);
     y1[2] -= h * missed.impulse.x() / kMass;
     y1[3] += h * missed.impulse.x() / kMass;
     y1[4] += h * missed.magnitude;

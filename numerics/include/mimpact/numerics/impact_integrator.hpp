@@ -102,15 +102,6 @@ class ImpactIntegrator {
   virtual Eigen::VectorXd velocity_resolution(const Eigen::VectorXd& diagonal,
                                               const Eigen::VectorXd& u_minus) const = 0;
 
- protected:
-  // sampled_contacts: those the observer sees (empty: all of them)
-  explicit ImpactIntegrator(std::vector<Eigen::Index> sampled_contacts)
-      : sampled_contacts_(std::move(sampled_contacts)) {}
-  ImpactIntegrator(const ImpactIntegrator&) = default;
-  ImpactIntegrator(ImpactIntegrator&&) noexcept = default;
-  ImpactIntegrator& operator=(const ImpactIntegrator&) = default;
-  ImpactIntegrator& operator=(ImpactIntegrator&&) noexcept = default;
-
   // One impact, checked: H compressed, its diagonal, u-, the law table; the mobility when the
   // caller gave it.
   struct Input {
@@ -120,6 +111,16 @@ class ImpactIntegrator {
     const LawTable& laws;
     const Eigen::SparseMatrix<double>* mobility = nullptr;
   };
+
+ protected:
+  // sampled_contacts: those the observer sees (empty: all of them)
+  explicit ImpactIntegrator(std::vector<Eigen::Index> sampled_contacts)
+      : sampled_contacts_(std::move(sampled_contacts)) {}
+  ImpactIntegrator(const ImpactIntegrator&) = default;
+  ImpactIntegrator(ImpactIntegrator&&) noexcept = default;
+  ImpactIntegrator& operator=(const ImpactIntegrator&) = default;
+  ImpactIntegrator& operator=(ImpactIntegrator&&) noexcept = default;
+
   // Fills the result's per-contact fields (impulse, max_force, time_of_max_force, work,
   // stored_energy) and counts (steps, contact_steps, duration, status, message).
   virtual void run(const Input& input, ImpactObserver* observer, LzbResult& result) = 0;

@@ -95,12 +95,28 @@ struct StepSeparation {
 // the overlap crosses the history (loading meets unloading) and the unloading curve's zero; the
 // model is integrated between all of them, each span from its corners by the change of
 // variable above, and the history's changes are returned.
+struct ContactOverStep {
+  double reach = 0.0;  // m: the sum of the radii, or the bead's radius against a wall
+  ContactLaw law;
+  double max_compression = 0.0;  // m: its history at the step's start
+  double opening = 0.0;          // m: the overlap below which it forgets its history
+};
+
+// The step's own quadrature: its nodes c and the weights b of its velocities and b-bar of its
+// positions (zero where only the velocities are amended).
 template <std::size_t Stages>
-OnsetQuadrature contact_step_quadrature(const StepSeparation& model, double reach,
-                                        const ContactLaw& law, double max_compression,
-                                        double opening, const std::array<double, Stages>& nodes,
-                                        const std::array<double, Stages>& weights,
-                                        const std::array<double, Stages>& position_weights) {
+struct StepQuadrature {
+  const std::array<double, Stages>& nodes;
+  const std::array<double, Stages>& weights;
+  const std::array<double, Stages>& position_weights;
+};
+
+template <std::size_t Stages>
+OnsetQuadrature contact_step_quadrature(const StepSeparation& model, const ContactOverStep& contact,
+                                        const StepQuadrature<Stages>& step) {
+  const double reach = contact.reach, max_compression = contact.max_compression;
+  const double opening = contact.opening;
+  const ContactLaw& law = contact.law;
   auto separation = [&](double s) { return model.at(s); };
   auto overlap = [&](double s) { return reach - separation(s).norm(); };
   const double e = law.restitution;
@@ -223,26 +239,26 @@ OnsetQuadrature contact_step_quadrature(const StepSeparation& model, double reac
   }
   integrate_part(from, 1.0, history);
   for (std::size_t i = 0; i < Stages; ++i) {  // what the right-hand side took
-    const Force f = force(nodes[i], max_compression);
-    out.impulse -= weights[i] * f.vector;
-    out.magnitude -= weights[i] * f.magnitude;
-    out.moment -= position_weights[i] * f.vector;
+    const Force f = force(step.nodes[i], max_compression);
+    out.impulse -= step.weights[i] * f.vector;
+    out.magnitude -= step.weights[i] * f.magnitude;
+    out.moment -= step.position_weights[i] * f.vector;
   }
   return out;
 }
 
-// The separation (m) of the second sphere's centre from the first's at the step's start, r0,
-// and end, r1, and its rates times the step, u0 = h r0', u1 = h r1' (m); `reach` (m) the sum of
-// the radii, `stiffness` K (N / m^(3/2)); the step's velocity weights b at its nodes c.
+// The same for an elastic Hertz contact along the cubic Hermite of its separation (m) from the
+// second sphere's centre to the first's, r0 at the step's start and r1 at its end, with its rates
+// times the step, u0 = h r0', u1 = h r1' (m); `reach` (m) the sum of the radii, `stiffness` K
+// (N / m^(3/2)); the step's velocity weights b at its nodes c.
 template <std::size_t Stages>
-OnsetQuadrature hertz_onset_quadrature(const Eigen::Vector3d& r0, const Eigen::Vector3d& u0,
-                                       const Eigen::Vector3d& r1, const Eigen::Vector3d& u1,
-                                       double reach, double stiffness,
-                                       const std::array<double, Stages>& nodes,
+OnsetQuadrature hertz_onset_quadrature(const StepSeparation& separation, double reach,
+                                       double stiffness, const std::array<double, Stages>& nodes,
                                        const std::array<double, Stages>& weights) {
+  static constexpr std::array<double, Stages> kNoPositions{};
   const ContactLaw hertz{.stiffness = stiffness, .exponent = 1.5, .restitution = 1.0};
-  return contact_step_quadrature(StepSeparation{.r0 = r0, .u0 = u0, .r1 = r1, .u1 = u1}, reach,
-                                 hertz, 0.0, 0.0, nodes, weights, std::array<double, Stages>{});
+  return contact_step_quadrature(separation, {.reach = reach, .law = hertz},
+                                 StepQuadrature<Stages>{nodes, weights, kNoPositions});
 }
 
 }  // namespace mimpact::numerics
