@@ -14,6 +14,10 @@ namespace mimpact::numerics {
 using Eigen::Index;
 using namespace adaptive_lzb;  // the impact's phases, switches and constants
 
+double adaptive_lzb::Impact::member_velocity(const State& y, std::size_t member) const {
+  return column_velocity(member, [&](std::size_t other) { return y[active_ + other]; });
+}
+
 double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const State& y) const {
   if (kind == release)
     return y[member] * delta_scale_[members_[member]] - release_level_[members_[member]];

@@ -182,4 +182,21 @@ class Impact {
   ImpactSampler* sampler_ = nullptr;   // the integrator's, for the impact being integrated
 };
 
+// u of every member (read by the right-hand side and the event search alike: inline in both)
+inline void Impact::member_velocities(const State& y, std::vector<double>& velocity) const {
+  for (std::size_t p = 0; p < members_.size(); ++p) velocity[p] = velocity_[members_[p]];
+  const int* start = H_->outerIndexPtr();
+  const int* row = H_->innerIndexPtr();
+  const double* value = H_->valuePtr();
+  for (std::size_t a = 0; a < active_; ++a) {
+    const Eigen::Index j = members_[a];
+    const double increment = y[active_ + a] * impulse_scale_[j];
+    // (a segment within the steps: its outer ring has neighbours beyond the members, moved by
+    // end_segment)
+    for (int k = start[j]; k < start[j + 1]; ++k)
+      if (const int other = member_of_[row[k]]; other >= 0)
+        velocity[std::size_t(other)] += value[k] * increment;
+  }
+}
+
 }  // namespace mimpact::numerics::adaptive_lzb

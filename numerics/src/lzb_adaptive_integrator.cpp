@@ -158,26 +158,6 @@ void adaptive_lzb::Impact::account_work(const State& y) {
   }
 }
 
-void adaptive_lzb::Impact::member_velocities(const State& y, std::vector<double>& velocity) const {
-  for (std::size_t p = 0; p < members_.size(); ++p) velocity[p] = velocity_[members_[p]];
-  const int* start = H_->outerIndexPtr();
-  const int* row = H_->innerIndexPtr();
-  const double* value = H_->valuePtr();
-  for (std::size_t a = 0; a < active_; ++a) {
-    const Index j = members_[a];
-    const double increment = y[active_ + a] * impulse_scale_[j];
-    // (a segment within the steps: its outer ring has neighbours beyond the members, moved by
-    // end_segment)
-    for (int k = start[j]; k < start[j + 1]; ++k)
-      if (const int other = member_of_[row[k]]; other >= 0)
-        velocity[std::size_t(other)] += value[k] * increment;
-  }
-}
-
-double adaptive_lzb::Impact::member_velocity(const State& y, std::size_t member) const {
-  return column_velocity(member, [&](std::size_t other) { return y[active_ + other]; });
-}
-
 void adaptive_lzb::Impact::derivative(const State& y, State& dydt) {
   member_velocities(y, rhs_velocity_);
   for (std::size_t a = 0; a < active_; ++a) {

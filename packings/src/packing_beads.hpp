@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "mimpact/granular/run_limits.hpp"
-#include "mimpact/packings/packing_model.hpp"
 #include "mimpact/packings/packing_scene.hpp"
 
 namespace mimpact::packings {

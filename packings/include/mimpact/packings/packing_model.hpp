@@ -16,9 +16,6 @@ namespace mimpact::packings {
 // to 1e-15; a bead list written with 10 significant digits still touches.
 constexpr double kTouching = 1e-9;
 
-// A point or a direction of the packing's space: `dimension` components (2 or 3), on the stack.
-using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
-
 // One contact of the packing: two bodies, or a body and a wall. The normal is frozen at the
 // configuration of the impact (the LZB model's: the impact takes no time, so the bodies do not
 // move; docs/model.md, section 13): g = n . (q_second - q_first) - rest for two bodies,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Dense>
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -19,6 +20,9 @@
 // scenes, every struct lists its fields once (visit_fields): the keys, their checks and the
 // messages.
 namespace mimpact::packings {
+
+// A point or a direction of the packing's space: `dimension` components (2 or 3), on the stack.
+using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
 
 enum class LatticeType { square, hexagonal, simple_cubic, fcc, hcp };
 constexpr auto enum_names(LatticeType) {
