@@ -28,7 +28,7 @@ void BM_C1WholeImpact(benchmark::State& state) {
   const chains::ChainModel model = chains::build_chain_model(
       chains::load_chain_scene(MIMPACT_SOURCE_DIR "/examples/scenes/c1.json"));
   numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6});
-  numerics::LzbResult result;
+  numerics::ImpactResult result;
   for (auto _ : state) {
     result = integrator.integrate(model.H, model.u_minus, model.laws);
     benchmark::DoNotOptimize(result.impulse.data());
@@ -137,7 +137,7 @@ BENCHMARK(BM_ChainLengthCompliant)
 void BM_ChainSteps(benchmark::State& state) {
   const chains::ChainModel model = c1_like_chain(int(state.range(0)));
   numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6, .max_steps = 400'000});
-  numerics::LzbResult result;
+  numerics::ImpactResult result;
   for (auto _ : state) {
     result = integrator.integrate(model.H, model.u_minus, model.laws);
     benchmark::DoNotOptimize(result.impulse.data());
@@ -157,7 +157,7 @@ void BM_ImpactSetup(benchmark::State& state) {
   const chains::ChainModel model = c1_like_chain(int(state.range(0)));
   numerics::LzbImpulseIntegrator integrator({.delta_p = 1e-6, .max_steps = 1});
   for (auto _ : state) {
-    numerics::LzbResult result = integrator.integrate(model.H, model.u_minus, model.laws);
+    numerics::ImpactResult result = integrator.integrate(model.H, model.u_minus, model.laws);
     benchmark::DoNotOptimize(result.impulse.data());
   }
 }

@@ -38,7 +38,7 @@ void run(benchmark::State& state, const std::string& impact) {
     run = packings::run_packing_scene(scene, model);
     benchmark::DoNotOptimize(run.impact.velocity_after.data());
   }
-  const numerics::LzbResult& lzb = run.impact.result;
+  const numerics::ImpactResult& lzb = run.impact.result;
   state.counters["beads"] = double(model.bead_count);
   state.counters["contacts"] = double(model.contact_count());
   state.counters["steps"] = double(lzb.steps);

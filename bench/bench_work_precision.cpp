@@ -48,9 +48,10 @@ Outcome outcome_of(const granular::ImpactOutcome& impact) {
 }
 
 Outcome run_lzb(const Case& c, const chains::ChainModel& model, double share) {
-  const double delta_p = share * granular::natural_impulse(model);
+  const double delta_p = share * granular::smallest_momentum(model);
   numerics::LzbOptions options = c.scene.impact.impulse_step_options();
   options.delta_p = delta_p;
+  options.relative_delta_p.reset();
   return outcome_of(chains::simulate_chain_impact(model, options));
 }
 

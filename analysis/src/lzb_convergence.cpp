@@ -13,7 +13,7 @@ namespace {
 
 // A run's generalized velocities v(P) at every step, stored flat (P, then n values a sample).
 struct Run {
-  numerics::LzbResult result;
+  numerics::ImpactResult result;
   double wall_time = 0.0;
   Eigen::Index dof = 0;
   std::vector<double> principal, velocities;
@@ -71,6 +71,7 @@ class Sampler : public numerics::ImpactObserver {
 Run run(const ImpactProblemData& problem, numerics::LzbOptions options, double delta_p,
         const Run* coarser, double& max_eta) {
   options.delta_p = delta_p;
+  options.relative_delta_p.reset();  // each row's step is the study's
   options.sample_every = 1;
   options.sampled_contacts.clear();
   numerics::LzbImpulseIntegrator integrator(options);
@@ -81,7 +82,7 @@ Run run(const ImpactProblemData& problem, numerics::LzbOptions options, double d
   measured.result = integrator.integrate(problem.H, problem.u_minus, problem.laws, &sampler);
   measured.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (measured.result.status != numerics::LzbStatus::terminated)
+  if (measured.result.status != numerics::ImpactStatus::terminated)
     throw Error("convergence study: " + measured.result.message);
   measured.velocity_after = problem.velocity_before + problem.mobility * measured.result.impulse;
   max_eta = sampler.max_eta;

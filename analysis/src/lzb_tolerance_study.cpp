@@ -13,7 +13,7 @@ constexpr double kSmallestTolerance = 1e-13;
 constexpr double kReduction = 10.0;
 
 struct Run {
-  numerics::LzbResult result;
+  numerics::ImpactResult result;
   Eigen::VectorXd velocity_after;
   double wall_time = 0.0;
 };
@@ -27,7 +27,7 @@ Run run(const ImpactProblemData& problem, numerics::LzbAdaptiveOptions options, 
   measured.result = integrator.integrate(problem.H, problem.u_minus, problem.laws);
   measured.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (measured.result.status != numerics::LzbStatus::terminated)
+  if (measured.result.status != numerics::ImpactStatus::terminated)
     throw Error("tolerance study: " + measured.result.message);
   measured.velocity_after = problem.velocity_before + problem.mobility * measured.result.impulse;
   return measured;

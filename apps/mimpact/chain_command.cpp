@@ -44,14 +44,14 @@ class ProgressReporter : public numerics::ImpactObserver {
 
 // LZB's relative error is 1 to 13 times delta_p / (m V) on the chains of docs/performance.md:
 // past 1 % of the striker's momentum the outcome is off by percents.
-void warn_if_coarse(double delta_p, double natural_impulse, bool quiet) {
-  const double share = delta_p / natural_impulse;
+void warn_if_coarse(double delta_p, double striker_momentum, bool quiet) {
+  const double share = delta_p / striker_momentum;
   if (quiet || !(share > 1e-2)) return;
   std::fprintf(
       stderr,
       "mimpact chain: warning: delta_p = %g N s is %.3g of the striker's momentum m V = %g N s; "
       "the outcome may be off by %.3g %% or more; take delta_p <= 1e-3 m V or use --tolerance\n",
-      delta_p, share, natural_impulse, 100.0 * share);
+      delta_p, share, striker_momentum, 100.0 * share);
 }
 
 // What the report's second line says of the method.
@@ -178,7 +178,7 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (lzb && !scene.adaptive()) {  // refused before it is warned of
     const double delta_p =
         granular::impulse_step(model, scene.impact, granular::impact_labels(overrides));
-    warn_if_coarse(delta_p, granular::natural_impulse(model), quiet);
+    warn_if_coarse(delta_p, granular::smallest_momentum(model), quiet);
   }
   ProgressReporter progress;
   granular::SceneRunOptions run_options;
@@ -195,7 +195,7 @@ int chain_command(const std::vector<std::string>& arguments) {
   if (!quiet)
     std::cerr << scene_file << ": "
               << chains::chain_report(model, impact, method_line(scene, run.delta_p));
-  if (impact.result.status != numerics::LzbStatus::terminated)
+  if (impact.result.status != numerics::ImpactStatus::terminated)
     throw Error(scene_file + ": " + impact.result.message + "; no output written");
   if (!(impact.velocity_after.allFinite() && impact.result.max_force.allFinite() &&
         std::isfinite(impact.result.duration)))

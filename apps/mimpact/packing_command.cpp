@@ -77,7 +77,7 @@ int packing_command(const std::vector<std::string>& arguments) {
   if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
   if (run.configuration && !run.configuration->holds())  // even when quiet: the model is wrong
     std::cerr << scene_file << ": warning: " << run.configuration->describe() << "\n";
-  if (run.impact.result.status != numerics::LzbStatus::terminated)
+  if (run.impact.result.status != numerics::ImpactStatus::terminated)
     throw Error(scene_file + ": " + run.impact.result.message + "; no output written");
   if (!(run.impact.velocity_after.allFinite() && run.impact.result.max_force.allFinite() &&
         std::isfinite(run.impact.result.duration)))

@@ -75,8 +75,8 @@ analysis::ConvergenceOptions convergence_options(const ChainScene& scene, const 
   options.first_delta_p = request.first    ? *request.first
                           : impact.delta_p ? *impact.delta_p
                           : impact.relative_delta_p
-                              ? *impact.relative_delta_p * granular::contact_impulse(model)
-                              : 1e-3 * granular::natural_impulse(model);
+                              ? *impact.relative_delta_p * granular::natural_impulse(model)
+                              : 1e-3 * granular::smallest_momentum(model);
   granular::check_delta_p(model, options.first_delta_p, impact.impulse_steps.max_steps,
                           request.first ? request.first_name : "impact.delta_p");
   read_tolerance(request, options.epsilon_plus, options.epsilon);

@@ -21,8 +21,8 @@ class Column : public kernel::SimulationObserver {
   void on_impact(const kernel::Simulation&, const kernel::ImpactReport& report) override {
     if (impacts++ < 3)
       std::printf("impact at t = %.6f s among %zu contacts, %lld steps, lasting %.3g s\n",
-                  report.time, report.interactions.size(), (long long)report.steps,
-                  report.duration);
+                  report.time, report.interactions.size(), (long long)report.result.steps,
+                  report.result.duration);
   }
   kernel::ContactForces first_forces, last_forces;
   int impacts = 0;

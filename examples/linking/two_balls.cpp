@@ -17,7 +17,7 @@ class FirstBounce : public kernel::SimulationObserver {
   kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
     if (!step.impact) return kernel::EventStatus::proceed();
     before = step.impact->velocity_before(0);
-    after = step.impact->velocity_after(0);
+    after = step.impact->result.velocity(0);
     return kernel::EventStatus::terminate("first bounce");
   }
   double before = 0.0, after = 0.0;

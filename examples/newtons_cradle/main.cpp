@@ -21,7 +21,7 @@ class Impacts : public kernel::SimulationObserver {
                  const kernel::ImpactReport& report) override {
     const kernel::NonSmoothDynamicalSystem& system = simulation.system();
     std::printf("impact at t = %.6f s, %zu contacts, %lld steps; ball speeds (m/s):", report.time,
-                report.interactions.size(), (long long)report.steps);
+                report.interactions.size(), (long long)report.result.steps);
     for (kernel::Index k = 0; k < system.system_count(); ++k)
       std::printf(" %.5f", cradle_.length * system.system(k).velocity()(0));
     std::printf("; energy %+.2e relative\n", cradle_.energy(system) / start_energy - 1.0);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mimpact/common/error.hpp"
+#include "mimpact/numerics/impulse_step_integrator.hpp"
 
 namespace mimpact::granular {
 
@@ -58,7 +59,7 @@ double momentum(const ContactModel& model, double start, Pick pick) {
 
 }  // namespace
 
-double natural_impulse(const ContactModel& model) {
+double smallest_momentum(const ContactModel& model) {
   return momentum(model, INFINITY, [](double a, double b) { return std::min(a, b); });
 }
 
@@ -66,17 +67,13 @@ double largest_momentum(const ContactModel& model) {
   return momentum(model, 0.0, [](double a, double b) { return std::max(a, b); });
 }
 
-double contact_impulse(const ContactModel& model) {
-  double largest = 0.0;
-  for (Eigen::Index j = 0; j < model.contact_count(); ++j)
-    if (model.u_minus(j) < 0.0)
-      largest = std::max(largest, -model.u_minus(j) / model.H.coeff(j, j));
-  return largest;
+double natural_impulse(const ContactModel& model) {
+  return numerics::natural_impulse(Eigen::VectorXd(model.H.diagonal()), model.u_minus);
 }
 
 void check_delta_p(const ContactModel& model, double delta_p, std::int64_t max_steps,
                    const std::string& field) {
-  const double impulse = natural_impulse(model);
+  const double impulse = smallest_momentum(model);
   if (!(delta_p > 0.0 && delta_p < impulse))
     throw InvalidInput(invalid_value_message(field, delta_p,
                                              "0 < delta_p < the striker's momentum m V = " +

@@ -110,7 +110,7 @@ void ImpactRecorder::configure(plugins::LzbImpactOptions& options) {
   } else {
     const double delta_p = options.delta_p
                                ? *options.delta_p
-                               : options.relative_delta_p.value_or(1.0) * contact_impulse(model_);
+                               : options.relative_delta_p.value_or(1.0) * natural_impulse(model_);
     samples = largest_momentum(model_) / delta_p / double(record_.every);
   }
   budget_.name(sampling_fields(record_, adaptive, frame_every_));

@@ -7,10 +7,11 @@
 #include "mimpact/common/error.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
 #include "mimpact/granular/moving_contacts.hpp"
-#include "mimpact/kernel/registry.hpp"
 #include "mimpact/kernel/simulation.hpp"
+#include "mimpact/plugins/acceleration_lcp_problem.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
-#include "mimpact/plugins/register_plugins.hpp"
+#include "mimpact/plugins/event_driven_integrator.hpp"
+#include "mimpact/plugins/lzb_impact_problem.hpp"
 
 namespace mimpact::granular {
 
@@ -47,8 +48,9 @@ class Impacts : public kernel::SimulationObserver {
 
  private:
   void add(const kernel::ImpactReport& report) {
+    const numerics::ImpactResult& impact = report.result;
     // A step the LZB thresholds cannot resolve the approach with would let the striker through.
-    if (report.steps == 0)
+    if (impact.steps == 0)
       throw InvalidInput(
           "the impact at t = " + to_text(report.time) +
           " s took no impulse step: no contact approaches faster than the LZB velocity "
@@ -58,18 +60,19 @@ class Impacts : public kernel::SimulationObserver {
     const double offset = report.time - result_.impact_time;
     for (std::size_t k = 0; k < report.interactions.size(); ++k) {
       const kernel::Index j = report.interactions[k];
-      total_.impulse(j) += report.impulse(Eigen::Index(k));
-      total_.work(j) += report.work(Eigen::Index(k));
-      total_.stored_energy(j) += report.stored_energy(Eigen::Index(k));
-      if (report.max_force(Eigen::Index(k)) > total_.max_force(j)) {
-        total_.max_force(j) = report.max_force(Eigen::Index(k));
-        total_.time_of_max_force(j) = offset + report.time_of_max_force(Eigen::Index(k));
+      const auto i = Eigen::Index(k);
+      total_.impulse(j) += impact.impulse(i);
+      total_.work(j) += impact.work(i);
+      total_.stored_energy(j) += impact.stored_energy(i);
+      if (impact.max_force(i) > total_.max_force(j)) {
+        total_.max_force(j) = impact.max_force(i);
+        total_.time_of_max_force(j) = offset + impact.time_of_max_force(i);
       }
     }
-    total_.steps += report.steps;
-    total_.contact_steps += report.contact_steps;
-    total_.residual_energy += report.residual_energy;
-    total_.duration = offset + report.duration;
+    total_.steps += impact.steps;
+    total_.contact_steps += impact.contact_steps;
+    total_.residual_energy += impact.residual_energy;
+    total_.duration = offset + impact.duration;
     result_.wall_time += report.wall_time;
     result_.impact_times.push_back(report.time);
     result_.velocities_before.push_back(report.generalized_velocity_before);
@@ -78,7 +81,7 @@ class Impacts : public kernel::SimulationObserver {
 
   const ContactModel& model_;
   double last_arrival_;
-  numerics::LzbResult total_;
+  numerics::ImpactResult total_;
   ImpactOutcome result_;
 };
 
@@ -176,13 +179,12 @@ ImpactOutcome simulate_impacts(const ContactModel& model,
                                std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                const plugins::LzbImpactOptions& options,
                                numerics::ImpactObserver* observer) {
-  plugins::register_plugins();
-  auto impacts = kernel::impact_problems().create("lzb", kernel::to_parameters(options));
+  auto impacts = std::make_unique<plugins::LzbImpactProblem>(options);
   impacts->set_impact_observer(observer);
   kernel::Simulation simulation(
-      std::move(system), kernel::integrators().create("event-driven"),
+      std::move(system), std::make_unique<plugins::EventDrivenIntegrator>(),
       {.impacts = std::move(impacts),
-       .contact_forces = kernel::contact_force_problems().create("acceleration-lcp")});
+       .contact_forces = std::make_unique<plugins::AccelerationLcpProblem>()});
   const double last_arrival =
       *std::max_element(model.striker_arrivals.begin(), model.striker_arrivals.end());
   Impacts all(model, last_arrival);
@@ -305,7 +307,7 @@ CompliantRun simulate_moving(const ContactModel& model, const CompliantSpec& spe
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
   impact.impact_time = impact_time;
   const Eigen::Index m = model.contact_count();
-  numerics::LzbResult& result = impact.result;
+  numerics::ImpactResult& result = impact.result;
   result.impulse.resize(m);
   result.max_force.resize(m);
   result.time_of_max_force.resize(m);
@@ -342,18 +344,18 @@ CompliantRun simulate_compliant(const ContactModel& model,
                                 int frame_every, const RunLimits& limits) {
   if (spec.geometry == Geometry::moving && model.beads)
     return simulate_moving(model, spec, record, frame_every, limits);
-  plugins::register_plugins();
   const auto [tolerance, absolute_tolerance, resolution] = compliant_tolerances(model, spec);
+  plugins::CompliantOptions options;
+  options.ode.relative_tolerance = tolerance;
+  options.ode.absolute_tolerance = absolute_tolerance;
+  options.overlap_resolution = resolution;
+  options.frozen_gaps = spec.gaps == Gaps::frozen;
+  options.max_steps = spec.max_steps;
+  auto integrator = std::make_unique<plugins::CompliantIntegrator>(options);
+  const plugins::CompliantIntegrator& compliant = *integrator;
   kernel::SimulationOptions simulation_options;
   simulation_options.penetration_tolerance += model.largest_static_overlap;  // precompressed
-  kernel::Simulation simulation(
-      system,
-      kernel::integrators().create("compliant", {{"relative_tolerance", tolerance},
-                                                 {"absolute_tolerance", absolute_tolerance},
-                                                 {"overlap_resolution", resolution},
-                                                 {"frozen_gaps", spec.gaps == Gaps::frozen},
-                                                 {"max_steps", spec.max_steps}}),
-      {}, simulation_options);
+  kernel::Simulation simulation(system, std::move(integrator), {}, simulation_options);
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
   RecordingBudget budget = compliant_budget(model, record, frame_every, limits);
@@ -404,9 +406,7 @@ CompliantRun simulate_compliant(const ContactModel& model,
   impact.velocities_before = {model.velocity};
   run.series = watch.take_series();
   run.frames = watch.take_frames();
-  run.most_bodies_in_motion =
-      dynamic_cast<const plugins::CompliantIntegrator&>(simulation.integrator())
-          .most_bodies_in_motion();
+  run.most_bodies_in_motion = compliant.most_bodies_in_motion();
   for (double& t : run.series.time) t -= impact.impact_time;
   for (double& t : run.frames.time) t -= impact.impact_time;
   return run;

@@ -90,7 +90,7 @@ double impulse_step(const ContactModel& model, const plugins::LzbImpactOptions& 
     check_delta_p(model, *impact.delta_p, impact.impulse_steps.max_steps, labels("delta_p"));
     return *impact.delta_p;
   }
-  const double delta_p = *impact.relative_delta_p * contact_impulse(model);
+  const double delta_p = *impact.relative_delta_p * natural_impulse(model);
   check_delta_p(model, delta_p, impact.impulse_steps.max_steps,
                 labels("relative_delta_p") + " x the natural impulse");
   return delta_p;

@@ -7,8 +7,8 @@
 
 namespace mimpact::numerics {
 
-std::string_view to_string(LzbStatus status) {
-  return status == LzbStatus::terminated ? "terminated" : "step_limit";
+std::string_view to_string(ImpactStatus status) {
+  return status == ImpactStatus::terminated ? "terminated" : "step_limit";
 }
 
 void LawTable::assign(std::span<const ContactLaw> laws) {
@@ -27,31 +27,28 @@ void LawTable::assign(std::span<const ContactLaw> laws) {
   }
 }
 
-void ImpactIntegrator::set_delta_p(double) {
-  throw InvalidInput("the " + std::string(name()) +
-                     " integrator takes no delta_p; allowed: a delta_p for the impulse-step and "
-                     "asynchronous integrators");
-}
-
-LzbResult ImpactIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
-                                      const Eigen::VectorXd& u_minus,
-                                      std::span<const ContactLaw> laws, ImpactObserver* observer) {
+ImpactResult ImpactIntegrator::integrate(const Eigen::SparseMatrix<double>& H,
+                                         const Eigen::VectorXd& u_minus,
+                                         std::span<const ContactLaw> laws,
+                                         ImpactObserver* observer) {
   if (H.isCompressed()) return integrate_checked(H, u_minus, laws, nullptr, observer);
   Eigen::SparseMatrix<double> compressed = H;
   compressed.makeCompressed();
   return integrate_checked(compressed, u_minus, laws, nullptr, observer);
 }
 
-LzbResult ImpactIntegrator::integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
-                                      std::span<const ContactLaw> laws, ImpactObserver* observer) {
+ImpactResult ImpactIntegrator::integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
+                                         std::span<const ContactLaw> laws,
+                                         ImpactObserver* observer) {
   checked_impact_input(H, u_minus, laws, sampled_contacts_);  // the dense matrix's own messages
   Eigen::SparseMatrix<double> sparse = H.sparseView(0.0, 0.0);
   sparse.makeCompressed();
   return integrate_checked(sparse, u_minus, laws, nullptr, observer);
 }
 
-LzbResult ImpactIntegrator::integrate(const Delassus& delassus, const Eigen::VectorXd& u_minus,
-                                      std::span<const ContactLaw> laws, ImpactObserver* observer) {
+ImpactResult ImpactIntegrator::integrate(const Delassus& delassus, const Eigen::VectorXd& u_minus,
+                                         std::span<const ContactLaw> laws,
+                                         ImpactObserver* observer) {
   if (delassus.H().isCompressed())
     return integrate_checked(delassus.H(), u_minus, laws, &delassus.mobility(), observer);
   Eigen::SparseMatrix<double> compressed = delassus.H();
@@ -59,15 +56,15 @@ LzbResult ImpactIntegrator::integrate(const Delassus& delassus, const Eigen::Vec
   return integrate_checked(compressed, u_minus, laws, &delassus.mobility(), observer);
 }
 
-LzbResult ImpactIntegrator::integrate_checked(const Eigen::SparseMatrix<double>& H,
-                                              const Eigen::VectorXd& u_minus,
-                                              std::span<const ContactLaw> laws,
-                                              const Eigen::SparseMatrix<double>* mobility,
-                                              ImpactObserver* observer) {
+ImpactResult ImpactIntegrator::integrate_checked(const Eigen::SparseMatrix<double>& H,
+                                                 const Eigen::VectorXd& u_minus,
+                                                 std::span<const ContactLaw> laws,
+                                                 const Eigen::SparseMatrix<double>* mobility,
+                                                 ImpactObserver* observer) {
   const Eigen::VectorXd diagonal = checked_impact_input(H, u_minus, laws, sampled_contacts_);
   laws_.assign(laws);
   sampler_.reset(sampled_contacts_, laws.size());
-  LzbResult result;
+  ImpactResult result;
   run({.H = H, .diagonal = diagonal, .u_minus = u_minus, .laws = laws_, .mobility = mobility},
       observer, result);
   // u+ = u- + H P, summed column by column onto u- as the step loops apply their impulses

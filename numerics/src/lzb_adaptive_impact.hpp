@@ -66,7 +66,7 @@ class Impact {
       : ode_(kLocalErrorShare * tolerance, kLocalErrorShare * tolerance) {}
 
   void run(const ImpactIntegrator::Input& input, const LzbAdaptiveOptions& options,
-           ImpactSampler& sampler, ImpactObserver* observer, LzbResult& result);
+           ImpactSampler& sampler, ImpactObserver* observer, ImpactResult& result);
 
  private:
   using State = DenseOutput::State;
@@ -107,7 +107,7 @@ class Impact {
   bool settled(const State& y);
   void sample_until(double t, ImpactObserver& observer);
   void notify(double t, const State* y, ImpactObserver& observer);
-  void finish(double t, LzbResult& result);
+  void finish(double t, ImpactResult& result);
 
   // An impact whose every law is continuous at the switches (e = 1, or bi-stiffness with e > 0:
   // d delta_j/dt = -u_j or -u_j / e^2 meet where u_j = 0) keeps them within the steps

@@ -270,7 +270,7 @@ void adaptive_lzb::Impact::sample_until(double t, ImpactObserver& observer) {
   }
 }
 
-void adaptive_lzb::Impact::finish(double t, LzbResult& result) {
+void adaptive_lzb::Impact::finish(double t, ImpactResult& result) {
   const std::size_t m = phase_.size();
   result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse_.data(), Index(m));
   result.work = Eigen::Map<const Eigen::VectorXd>(work_.data(), Index(m));
@@ -292,7 +292,7 @@ void adaptive_lzb::Impact::finish(double t, LzbResult& result) {
 
 void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
                                const LzbAdaptiveOptions& options, ImpactSampler& sampler,
-                               ImpactObserver* observer, LzbResult& result) {
+                               ImpactObserver* observer, ImpactResult& result) {
   const Eigen::VectorXd& u_minus = input.u_minus;
   H_ = &input.H;
   sampler_ = &sampler;
@@ -314,7 +314,7 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
       account_work(ode_.state());
       end_segment(ode_.state());
       finish(ode_.time(), result);
-      result.status = LzbStatus::step_limit;
+      result.status = ImpactStatus::step_limit;
       result.message =
           "the impact did not end within max_steps = " + std::to_string(options.max_steps) +
           " steps and restarts";
@@ -391,7 +391,8 @@ Eigen::VectorXd LzbAdaptiveIntegrator::velocity_resolution(const Eigen::VectorXd
   return Eigen::VectorXd::Constant(diagonal.size(), options_.tolerance * (-u_minus.minCoeff()));
 }
 
-void LzbAdaptiveIntegrator::run(const Input& input, ImpactObserver* observer, LzbResult& result) {
+void LzbAdaptiveIntegrator::run(const Input& input, ImpactObserver* observer,
+                                ImpactResult& result) {
   if (!impact_) impact_ = std::make_unique<Impact>(options_.tolerance);
   impact_->run(input, options_, sampler(), observer, result);
 }

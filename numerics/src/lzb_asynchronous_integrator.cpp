@@ -51,26 +51,12 @@ double next_time(double time, double length) {
 }  // namespace
 
 LzbAsynchronousIntegrator::LzbAsynchronousIntegrator(LzbOptions options)
-    : ImpactIntegrator(options.sampled_contacts), options_(std::move(options)) {
-  validate(options_, "LZB options");
-}
+    : ImpulseStepIntegrator(std::move(options)) {}
 
-void LzbAsynchronousIntegrator::set_delta_p(double delta_p) {
-  LzbOptions changed = options_;
-  changed.delta_p = delta_p;
-  validate(changed, "LZB options");
-  options_ = std::move(changed);
-}
-
-Eigen::VectorXd LzbAsynchronousIntegrator::velocity_resolution(const Eigen::VectorXd& diagonal,
-                                                               const Eigen::VectorXd&) const {
-  return diagonal.unaryExpr([this](double h_jj) { return options_.velocity_tolerance(h_jj); });
-}
-
-void LzbAsynchronousIntegrator::run(const Input& input, ImpactObserver* observer,
-                                    LzbResult& result) {
+void LzbAsynchronousIntegrator::take_steps(const Input& input, ImpactObserver* observer,
+                                           ImpactResult& result) {
   prepare(input.diagonal, input.u_minus, input.laws);
-  detail::with_columns(input.H, options_.dense_up_to, dense_,
+  detail::with_columns(input.H, options().dense_up_to, dense_,
                        [&](const auto& H) { kicks(H, observer, result); });
 }
 
@@ -82,8 +68,8 @@ void LzbAsynchronousIntegrator::prepare(const Eigen::VectorXd& diagonal,
   for (std::size_t j = 0; j < m; ++j) {
     Contact& contact = contacts_[j];
     contact.h_jj = diagonal(Index(j));
-    contact.tolerance_u = options_.velocity_tolerance(contact.h_jj);
-    contact.tolerance_energy = options_.energy_tolerance(contact.h_jj);
+    contact.tolerance_u = options().velocity_tolerance(contact.h_jj);
+    contact.tolerance_energy = options().energy_tolerance(contact.h_jj);
   }
   u_.assign(u_minus.data(), u_minus.data() + m);
   queue_.clear();
@@ -166,13 +152,13 @@ double LzbAsynchronousIntegrator::step_length(Index j, double limit) const {
   double length = INFINITY;
   if (contact.energy > contact.tolerance_energy) {
     const double natural = std::sqrt(contact.energy / (law.power * contact.h_jj));
-    length = std::min(options_.delta_p, kNaturalShare * natural) / force_of(law, contact.energy);
+    length = std::min(options().delta_p, kNaturalShare * natural) / force_of(law, contact.energy);
     if (u > 0.0 && (law.mono_stiffness || law.restitution > 0.0)) {
       const double f = law.mono_stiffness ? 1.0 : law.inverse_e2;
       length = std::min(length, (contact.w - contact.release_w) / (q * law.coefficient * f * u));
     }
   } else if (u < 0.0) {
-    const double target = detail::power_of(contact.energy - u * options_.delta_p, q);
+    const double target = detail::power_of(contact.energy - u * options().delta_p, q);
     length = (target - contact.w) / (q * law.coefficient * -u);
   }
   return std::max(std::min(length, limit), 0.0);
@@ -288,7 +274,7 @@ void LzbAsynchronousIntegrator::set_release_level(Index i) {
 
 template <class Delassus>
 void LzbAsynchronousIntegrator::kicks(const Delassus& H, ImpactObserver* observer,
-                                      LzbResult& result) {
+                                      ImpactResult& result) {
   const Index m = Index(contacts_.size());
   for (Index j = 0; j < m; ++j)
     if (!contacts_[std::size_t(j)].in_impact &&
@@ -302,10 +288,10 @@ void LzbAsynchronousIntegrator::kicks(const Delassus& H, ImpactObserver* observe
     const Step step = queue_.back();
     queue_.pop_back();
     if (step.stamp != contacts_[step.contact].stamp) continue;  // rescheduled or cancelled
-    if (result.steps >= options_.max_steps) {
-      result.status = LzbStatus::step_limit;
+    if (result.steps >= options().max_steps) {
+      result.status = ImpactStatus::step_limit;
       result.message =
-          "the impact did not end within max_steps = " + std::to_string(options_.max_steps) +
+          "the impact did not end within max_steps = " + std::to_string(options().max_steps) +
           " kicks; raise max_steps or delta_p";
       break;
     }
@@ -315,7 +301,7 @@ void LzbAsynchronousIntegrator::kicks(const Delassus& H, ImpactObserver* observe
     if (!std::isfinite(time)) break;
     kick(H, Index(step.contact), time);
     ++result.steps;
-    if (observer && options_.sample_every > 0 && result.steps % options_.sample_every == 0)
+    if (observer && options().sample_every > 0 && result.steps % options().sample_every == 0)
       notify(observer, result.steps, time);
   }
   if (observer) notify(observer, result.steps, time);

@@ -11,42 +11,18 @@ namespace mimpact::numerics {
 
 using Eigen::Index;
 
-double LzbOptions::velocity_tolerance(double h_jj) const {
-  return fixed_thresholds ? fixed_thresholds->velocity
-                          : termination_velocity_factor * h_jj * delta_p;
-}
-
-double LzbOptions::energy_tolerance(double h_jj) const {
-  if (fixed_thresholds) return fixed_thresholds->energy;
-  const double velocity = velocity_tolerance(h_jj);
-  return velocity * velocity / (2.0 * h_jj);
-}
-
 using detail::DenseDelassus;
 using detail::power_of;
 using detail::SparseDelassus;
 
 LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options)
-    : ImpactIntegrator(options.sampled_contacts), options_(std::move(options)) {
-  validate(options_, "LZB options");
-}
+    : ImpulseStepIntegrator(std::move(options)) {}
 
-void LzbImpulseIntegrator::set_delta_p(double delta_p) {
-  LzbOptions changed = options_;
-  changed.delta_p = delta_p;
-  validate(changed, "LZB options");
-  options_ = std::move(changed);
-}
-
-Eigen::VectorXd LzbImpulseIntegrator::velocity_resolution(const Eigen::VectorXd& diagonal,
-                                                          const Eigen::VectorXd&) const {
-  return diagonal.unaryExpr([this](double h_jj) { return options_.velocity_tolerance(h_jj); });
-}
-
-void LzbImpulseIntegrator::run(const Input& input, ImpactObserver* observer, LzbResult& result) {
+void LzbImpulseIntegrator::take_steps(const Input& input, ImpactObserver* observer,
+                                      ImpactResult& result) {
   prepare(input.diagonal, input.u_minus, input.laws);
   const LawConstants* law = input.laws.data();
-  detail::with_columns(input.H, options_.dense_up_to, dense_,
+  detail::with_columns(input.H, options().dense_up_to, dense_,
                        [&](const auto& H) { step(H, law, observer, result); });
 }
 
@@ -62,8 +38,8 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen:
     c.flag_capacity = m;
   }
   for (std::size_t j = 0; j < m; ++j) {
-    c.tolerance_u[j] = options_.velocity_tolerance(diagonal(Index(j)));
-    c.tolerance_energy[j] = options_.energy_tolerance(diagonal(Index(j)));
+    c.tolerance_u[j] = options().velocity_tolerance(diagonal(Index(j)));
+    c.tolerance_energy[j] = options().energy_tolerance(diagonal(Index(j)));
   }
 
   c.u.assign(u_minus.data(), u_minus.data() + m);
@@ -278,7 +254,7 @@ template <class Delassus>
 
 template <class Delassus>
 void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
-                                ImpactObserver* observer, LzbResult& result) {
+                                ImpactObserver* observer, ImpactResult& result) {
   Contacts& c = contacts_;
   StepArrays a{law,
                c.tolerance_u.data(),
@@ -299,7 +275,7 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
                c.active.data(),
                c.merge_buffer.data(),
                initially_active_};
-  const double delta_p = options_.delta_p;
+  const double delta_p = options().delta_p;
   std::int64_t step = 0;
   double time = 0.0, principal = 0.0;
   if (observer) notify(observer, step, time, principal);
@@ -307,10 +283,10 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
     select_participants(a, delta_p);
     if (a.active_count == 0) break;
     const Index primary = find_primary(a);
-    if (step >= options_.max_steps) {
-      result.status = LzbStatus::step_limit;
+    if (step >= options().max_steps) {
+      result.status = ImpactStatus::step_limit;
       result.message =
-          "the impact did not end within max_steps = " + std::to_string(options_.max_steps) +
+          "the impact did not end within max_steps = " + std::to_string(options().max_steps) +
           " impulse steps; raise max_steps or delta_p";
       break;
     }
@@ -327,7 +303,7 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
                                   primary_force, law[primary].coefficient, law[primary].power);
     principal += a.step_impulse[primary];
     ++step;
-    if (observer && options_.sample_every > 0 && step % options_.sample_every == 0)
+    if (observer && options().sample_every > 0 && step % options().sample_every == 0)
       notify(observer, step, time, principal);
   }
   if (observer) notify(observer, step, time, principal);

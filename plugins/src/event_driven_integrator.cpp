@@ -315,8 +315,8 @@ void EventDrivenIntegrator::process_event(const Event& event, kernel::StepReport
   velocity_resolution_.setZero();
   if (impact) {
     kernel::ImpactReport solved = impacts_->solve(*system_, closed_, time_);
-    if (solved.status != kernel::ImpactStatus::terminated)
-      throw Error("impact at t = " + to_text(time_) + " s: " + solved.message);
+    if (solved.result.status != numerics::ImpactStatus::terminated)
+      throw Error("impact at t = " + to_text(time_) + " s: " + solved.result.message);
     system_->gather_state(q_, v_);
     if (solved.velocity_resolution.size() == Index(closed_.size()))
       for (std::size_t k = 0; k < closed_.size(); ++k)

@@ -9,6 +9,7 @@ namespace mimpact::plugins {
 numerics::LzbOptions LzbImpactOptions::impulse_step_options() const {
   numerics::LzbOptions options = impulse_steps;
   options.delta_p = delta_p.value_or(kDefaultDeltaP);
+  options.relative_delta_p = relative_delta_p;
   return options;
 }
 
@@ -20,36 +21,38 @@ numerics::LzbAdaptiveOptions LzbImpactOptions::adaptive_options() const {
   return options;
 }
 
-void LzbImpactOptions::check(std::string_view owner, const fields::Labels& labels) const {
-  // the fields' ranges, each named where it was given
-  const fields::Validator validator{std::string(owner), ""};
-  visit_fields(*this, [&](std::string_view name, const auto& value, const auto&... allowed) {
-    validator.check(labels(name), value, allowed...);
-  });
-  auto refuse = [&](const std::string& what) {
-    throw InvalidInput(owner.empty() ? what : std::string(owner) + ": " + what);
-  };
+std::string LzbImpactOptions::conflict(const fields::Labels& labels) const {
   const std::string integrator_is =
       labels("integrator") + " is \"" + std::string(enum_name(chosen_integrator())) + "\"";
   if (integrator == LzbIntegrator::adaptive) {
     for (const auto& [name, value] :
          {std::pair{"delta_p", delta_p}, std::pair{"relative_delta_p", relative_delta_p}})
       if (value)
-        refuse(labels(name) + " = " + to_text(*value) +
-               " chooses the step of the impulse steps, "
-               "but " +
-               integrator_is + "; allowed: " + labels("tolerance") +
-               " with \"adaptive\", or a step with \"impulse-step\" or \"asynchronous\"");
+        return labels(name) + " = " + to_text(*value) +
+               " chooses the step of the impulse steps, but " + integrator_is +
+               "; allowed: " + labels("tolerance") +
+               " with \"adaptive\", or a step with \"impulse-step\" or \"asynchronous\"";
   } else if (tolerance) {
-    refuse(labels("tolerance") + " = " + to_text(*tolerance) +
+    return labels("tolerance") + " = " + to_text(*tolerance) +
            " is the accuracy of the adaptive integrator, but " + integrator_is +
            "; allowed: " + labels("delta_p") + " or " + labels("relative_delta_p") +
-           " with the impulse steps, or a tolerance with \"adaptive\"");
+           " with the impulse steps, or a tolerance with \"adaptive\"";
   }
   if (delta_p && relative_delta_p)
-    refuse(labels("delta_p") + " = " + to_text(*delta_p) + " and " + labels("relative_delta_p") +
+    return labels("delta_p") + " = " + to_text(*delta_p) + " and " + labels("relative_delta_p") +
            " = " + to_text(*relative_delta_p) +
-           " both choose the impulse step; allowed: one of them");
+           " both choose the impulse step; allowed: one of them";
+  return {};
+}
+
+void LzbImpactOptions::check(std::string_view owner, const fields::Labels& labels) const {
+  // the fields' ranges, each named where it was given
+  const fields::Validator validator{std::string(owner), ""};
+  visit_fields(*this, [&](std::string_view name, const auto& value, const auto&... allowed) {
+    validator.check(labels(name), value, allowed...);
+  });
+  if (const std::string message = conflict(labels); !message.empty())
+    throw InvalidInput(owner.empty() ? message : std::string(owner) + ": " + message);
 }
 
 std::unique_ptr<numerics::ImpactIntegrator> make_impact_integrator(

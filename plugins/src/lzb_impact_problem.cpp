@@ -88,30 +88,15 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
     const std::vector<Index>& sampled = options_.impulse_steps.sampled_contacts;
     if (!sampled.empty()) integrator_->set_sampled_contacts(sampled_places(closed, sampled));
   }
-  const numerics::LzbResult result = integrate(delassus, u_minus, samples ? &*samples : nullptr);
-
-  report.status = result.status == numerics::LzbStatus::terminated
-                      ? kernel::ImpactStatus::terminated
-                      : kernel::ImpactStatus::step_limit;
-  report.message = result.message;
+  report.result = integrator_->integrate(delassus, u_minus, laws_, samples ? &*samples : nullptr);
   report.time = time;
   report.interactions.assign(closed.begin(), closed.end());
   report.velocity_before = u_minus;
-  report.velocity_after = result.velocity;
-  report.impulse = result.impulse;
-  report.max_force = result.max_force;
-  report.time_of_max_force = result.time_of_max_force;
   report.velocity_resolution =
       integrator_->velocity_resolution(Eigen::VectorXd(delassus.H().diagonal()), u_minus);
-  report.steps = result.steps;
-  report.contact_steps = result.contact_steps;
-  report.residual_energy = result.residual_energy;
-  report.work = result.work;
-  report.stored_energy = result.stored_energy;
-  report.duration = result.duration;
-  if (report.status == kernel::ImpactStatus::terminated) {
+  if (report.result.status == numerics::ImpactStatus::terminated) {
     report.generalized_velocity_after =
-        report.generalized_velocity_before + delassus.mobility() * result.impulse;
+        report.generalized_velocity_before + delassus.mobility() * report.result.impulse;
     system.scatter_state(q, report.generalized_velocity_after);
   } else {
     report.generalized_velocity_after = report.generalized_velocity_before;  // no outcome
@@ -119,20 +104,6 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
   report.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
-}
-
-// The chosen integrator; the impulse steps (either kind) take delta_p as a share of the impact's
-// natural impulse when relative_delta_p is set.
-numerics::LzbResult LzbImpactProblem::integrate(const numerics::Delassus& delassus,
-                                                const Eigen::VectorXd& u_minus,
-                                                numerics::ImpactObserver* observer) {
-  if (options_.relative_delta_p) {
-    const double natural_impulse =
-        (-u_minus).cwiseMax(0.0).cwiseQuotient(Eigen::VectorXd(delassus.H().diagonal())).maxCoeff();
-    if (natural_impulse > 0.0)
-      integrator_->set_delta_p(*options_.relative_delta_p * natural_impulse);
-  }
-  return integrator_->integrate(delassus, u_minus, laws_, observer);
 }
 
 }  // namespace mimpact::plugins

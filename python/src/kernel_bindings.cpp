@@ -296,18 +296,23 @@ void bind_interactions(py::module_& module) {
 
 // What a run reports: impacts, contact forces, steps, the summary.
 void bind_reports(py::module_& module) {
+  // the integration's result (ImpactReport::result) read as the report's own attributes
+  auto of_result = [](auto member) {
+    return [member](const kernel::ImpactReport& report) { return report.result.*member; };
+  };
+  using numerics::ImpactResult;
   py::class_<kernel::ImpactReport>(module, "ImpactReport")
       .def_readonly("time", &kernel::ImpactReport::time)
       .def_readonly("interactions", &kernel::ImpactReport::interactions)
       .def_readonly("velocity_before", &kernel::ImpactReport::velocity_before)
-      .def_readonly("velocity_after", &kernel::ImpactReport::velocity_after)
-      .def_readonly("impulse", &kernel::ImpactReport::impulse)
-      .def_readonly("max_force", &kernel::ImpactReport::max_force)
-      .def_readonly("time_of_max_force", &kernel::ImpactReport::time_of_max_force)
-      .def_readonly("work", &kernel::ImpactReport::work)
-      .def_readonly("stored_energy", &kernel::ImpactReport::stored_energy)
-      .def_readonly("steps", &kernel::ImpactReport::steps)
-      .def_readonly("duration", &kernel::ImpactReport::duration)
+      .def_property_readonly("velocity_after", of_result(&ImpactResult::velocity))
+      .def_property_readonly("impulse", of_result(&ImpactResult::impulse))
+      .def_property_readonly("max_force", of_result(&ImpactResult::max_force))
+      .def_property_readonly("time_of_max_force", of_result(&ImpactResult::time_of_max_force))
+      .def_property_readonly("work", of_result(&ImpactResult::work))
+      .def_property_readonly("stored_energy", of_result(&ImpactResult::stored_energy))
+      .def_property_readonly("steps", of_result(&ImpactResult::steps))
+      .def_property_readonly("duration", of_result(&ImpactResult::duration))
       .def_readonly("wall_time", &kernel::ImpactReport::wall_time);
   py::class_<kernel::ContactForces>(module, "ContactForces")
       .def_readonly("time", &kernel::ContactForces::time)

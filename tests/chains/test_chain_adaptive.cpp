@@ -20,7 +20,7 @@ TEST(AdaptiveChains, ElasticChainsAreTheExactHertzChain) {
   for (const char* scene : {"c1.json", "c2.json"}) {
     const chains::ChainModel model = scene_model(scene);
     const granular::ImpactOutcome impact = run_adaptive(model, 1e-10);
-    ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated);
+    ASSERT_EQ(impact.result.status, numerics::ImpactStatus::terminated);
     const Eigen::VectorXd exact =
         integrate_hertz_chain(model.mass, model.velocity, stiffnesses(model)).velocity;
     const double error = relative_difference(impact.velocity_after, exact);
@@ -65,7 +65,7 @@ TEST(AdaptiveChains, SameModelAsTheImpulseStepsExtrapolated) {
     const granular::ImpactOutcome coarse = run_chain(model, 2.0 * c.finest_delta_p);
     const granular::ImpactOutcome fine = run_chain(model, c.finest_delta_p);
     const granular::ImpactOutcome adaptive = run_adaptive(model, 1e-10);
-    ASSERT_EQ(adaptive.result.status, numerics::LzbStatus::terminated) << name;
+    ASSERT_EQ(adaptive.result.status, numerics::ImpactStatus::terminated) << name;
     const double velocity_gap = relative_difference(
         adaptive.velocity_after, richardson(fine.velocity_after, coarse.velocity_after));
     const double force_gap = relative_difference(

@@ -23,7 +23,7 @@ void expect_step_counts(const std::string& scene, const std::string& chain) {
     const double delta_p = row[0];
     const std::int64_t paper_steps = row[1];
     const granular::ImpactOutcome impact = run_chain(model, delta_p);
-    ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated);
+    ASSERT_EQ(impact.result.status, numerics::ImpactStatus::terminated);
     const double taken = double(paper_steps - 1);
     EXPECT_NEAR(double(impact.result.steps), taken, 0.01 * taken)
         << scene << " at delta_p = " << delta_p;
@@ -74,7 +74,7 @@ TEST(PaperTable4, C3EndsCleanlyAtEveryPublishedStep) {
   for (const auto& row : published("convergence").at("C3")) {
     const double delta_p = row[0];
     const granular::ImpactOutcome impact = run_chain(model, delta_p);
-    ASSERT_EQ(impact.result.status, numerics::LzbStatus::terminated) << delta_p;
+    ASSERT_EQ(impact.result.status, numerics::ImpactStatus::terminated) << delta_p;
     ASSERT_TRUE(impact.velocity_after.allFinite());
     EXPECT_LE(relative_momentum_change(model, impact), 1e-12);
     EXPECT_LT(kinetic_energy_ratio(model, impact), 1.0);

@@ -37,7 +37,7 @@ TEST_P(DissipativeChain, EndsAndAgreesWithTenTimesSmallerDeltaP) {
   const granular::ImpactOutcome coarse = run_chain(model, 1e-6);
   const granular::ImpactOutcome fine = run_chain(model, 1e-7);
   for (const granular::ImpactOutcome* impact : {&coarse, &fine}) {
-    ASSERT_EQ(impact->result.status, numerics::LzbStatus::terminated);
+    ASSERT_EQ(impact->result.status, numerics::ImpactStatus::terminated);
     ASSERT_TRUE(impact->velocity_after.allFinite());
     EXPECT_LE(relative_momentum_change(model, *impact), 1e-12);
     EXPECT_LT(kinetic_energy_ratio(model, *impact), 1.0);

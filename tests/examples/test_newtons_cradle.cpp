@@ -44,7 +44,7 @@ Eigen::VectorXd chain_outcome(const NewtonsCradle& cradle, double speed, double 
   law.restitution = cradle.restitution;
   const std::vector<numerics::ContactLaw> laws(std::size_t(n - 1), law);
   numerics::LzbImpulseIntegrator integrator({.delta_p = delta_p});
-  const numerics::LzbResult result =
+  const numerics::ImpactResult result =
       integrator.integrate(Eigen::MatrixXd(delassus.H()), W.transpose() * v, laws);
   return v + delassus.mobility() * result.impulse;
 }
@@ -101,7 +101,7 @@ TEST(NewtonsCradle, ElasticCradleKeepsItsEnergy) {
 // Sums the LZB steps of every impact of a run.
 struct ImpactSteps : kernel::SimulationObserver {
   void on_impact(const kernel::Simulation&, const kernel::ImpactReport& report) override {
-    steps += report.steps;
+    steps += report.result.steps;
     ++impacts;
   }
   std::int64_t steps = 0, impacts = 0;

@@ -54,7 +54,7 @@ TEST(RockingBlock, RocksLosesEnergyAndRestsOnBothCorners) {
   for (std::size_t k = 0; k < rocking.impacts.size(); ++k) {
     const kernel::ImpactReport& impact = rocking.impacts[k];
     if (impact.interactions.size() == 1) {
-      EXPECT_NEAR(impact.velocity_after(0), -block.restitution * impact.velocity_before(0),
+      EXPECT_NEAR(impact.result.velocity(0), -block.restitution * impact.velocity_before(0),
                   1e-9 * std::abs(impact.velocity_before(0)))
           << "impact " << k;
     }

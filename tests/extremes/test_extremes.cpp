@@ -116,13 +116,13 @@ class EnergyWatch : public ImpactObserver {
 };
 
 struct Outcome {
-  LzbResult result;
+  ImpactResult result;
   VectorXd velocity;  // of the bodies, after
 };
 
 template <class Kind>
-LzbResult integrate(const Line& line, double level, ImpactObserver* observer,
-                    double sample_interval) {
+ImpactResult integrate(const Line& line, double level, ImpactObserver* observer,
+                       double sample_interval) {
   const auto integrator = Kind::make({.level = level,
                                       .natural_impulse = line.natural_impulse(),
                                       .observe = observer != nullptr,
@@ -144,8 +144,8 @@ Outcome expect_sound(const Line& line, double level, const std::string& what,
                               ? integrate<Kind>(line, level, nullptr, 0.0).duration
                               : 0.0;
   out.result = integrate<Kind>(line, level, watch_energy ? &watch : nullptr, duration / 400.0);
-  const LzbResult& r = out.result;
-  EXPECT_EQ(r.status, LzbStatus::terminated) << what << ": " << r.message;
+  const ImpactResult& r = out.result;
+  EXPECT_EQ(r.status, ImpactStatus::terminated) << what << ": " << r.message;
   EXPECT_TRUE(r.impulse.allFinite() && r.velocity.allFinite() && r.max_force.allFinite() &&
               r.time_of_max_force.allFinite() && std::isfinite(r.duration))
       << what;
@@ -326,8 +326,8 @@ TYPED_TEST(Extremes, GrazingContact) {
   if constexpr (TypeParam::kStepsOfImpulse) {
     const auto coarse_steps = TypeParam::make(
         {.level = 1e-4, .natural_impulse = kBeadMass});  // 1e8 times the grazing impulse
-    const LzbResult coarse = coarse_steps->integrate(two.H(), two.u_minus(), two.laws);
-    EXPECT_EQ(coarse.status, LzbStatus::terminated);
+    const ImpactResult coarse = coarse_steps->integrate(two.H(), two.u_minus(), two.laws);
+    EXPECT_EQ(coarse.status, ImpactStatus::terminated);
     EXPECT_EQ(coarse.steps, 0);
     EXPECT_EQ(coarse.velocity(0), -1e-12);
     EXPECT_LT(1e-12, coarse_steps->velocity_resolution(two.H().diagonal(), two.u_minus())(0));

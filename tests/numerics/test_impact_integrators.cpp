@@ -46,8 +46,8 @@ TYPED_TEST(ImpactIntegrators, LoneContactRestoresItsRestitution) {
                              .model = model};
         const auto integrator =
             TypeParam::make({.level = level, .natural_impulse = reduced_mass * speed});
-        const LzbResult result = integrator->integrate(H, u_minus, std::span(&law, 1));
-        ASSERT_EQ(result.status, LzbStatus::terminated);
+        const ImpactResult result = integrator->integrate(H, u_minus, std::span(&law, 1));
+        ASSERT_EQ(result.status, ImpactStatus::terminated);
         const std::string what = std::string(enum_name(model)) + ", eta " +
                                  std::to_string(exponent) + ", e " + std::to_string(e);
         EXPECT_NEAR(result.velocity(0), e * speed, bound * speed) << what;
@@ -74,8 +74,8 @@ TYPED_TEST(ImpactIntegrators, ChainC1ConvergesToTheExactHertzChain) {
   std::vector<double> errors;
   for (double level : {TypeParam::kFine * 100.0, TypeParam::kFine}) {
     const auto integrator = TypeParam::make({.level = level, .natural_impulse = chain.mass});
-    const LzbResult result = integrator->integrate(chain.delassus(), chain.struck(), laws);
-    ASSERT_EQ(result.status, LzbStatus::terminated);
+    const ImpactResult result = integrator->integrate(chain.delassus(), chain.struck(), laws);
+    ASSERT_EQ(result.status, ImpactStatus::terminated);
     errors.push_back((chain.velocity_after(result.impulse) - exact.velocity).cwiseAbs().maxCoeff());
     std::printf("%s at %.0e: max |v+ - v+_Hertz| = %.3e m/s, %lld steps\n", TypeParam::kName, level,
                 errors.back(), static_cast<long long>(result.steps));
@@ -93,8 +93,8 @@ TYPED_TEST(ImpactIntegrators, MomentumIsConservedAndEnergyNeverGained) {
       const std::vector<ContactLaw> laws(
           chain.contacts(), ContactLaw{.stiffness = chain.stiffness, .restitution = e});
       const auto integrator = TypeParam::make({.level = level, .natural_impulse = chain.mass});
-      const LzbResult result = integrator->integrate(chain.delassus(), chain.struck(), laws);
-      ASSERT_EQ(result.status, LzbStatus::terminated);
+      const ImpactResult result = integrator->integrate(chain.delassus(), chain.struck(), laws);
+      ASSERT_EQ(result.status, ImpactStatus::terminated);
       const Eigen::VectorXd v = chain.velocity_after(result.impulse);
       EXPECT_NEAR(v.sum(), 1.0, 1e-12) << "e " << e << ", level " << level;
       const double energy = v.squaredNorm();  // relative to the striker's
@@ -120,11 +120,11 @@ TYPED_TEST(ImpactIntegrators, TheThreeFormsOfTheInputAreOneImpact) {
   W.setFromTriplets(entries.begin(), entries.end());
   const Delassus delassus(W, Eigen::VectorXd::Constant(chain.beads, 1.0 / chain.mass));
   const Accuracy accuracy{.level = TypeParam::kCoarse, .natural_impulse = chain.mass};
-  const LzbResult sparse =
+  const ImpactResult sparse =
       TypeParam::make(accuracy)->integrate(chain.delassus(), chain.struck(), laws);
-  const LzbResult dense =
+  const ImpactResult dense =
       TypeParam::make(accuracy)->integrate(Eigen::MatrixXd(chain.delassus()), chain.struck(), laws);
-  const LzbResult from_bodies =
+  const ImpactResult from_bodies =
       TypeParam::make(accuracy)->integrate(delassus, chain.struck(), laws);
   ASSERT_TRUE(delassus.H().isApprox(chain.delassus(), 0.0));
   EXPECT_EQ(sparse.impulse, dense.impulse);
@@ -143,7 +143,7 @@ TYPED_TEST(ImpactIntegrators, AnOverflowIsAnErrorNamingTheIntegrator) {
   const auto integrator =
       TypeParam::make({.level = TypeParam::kCoarse, .natural_impulse = mass * speed});
   try {
-    const LzbResult result =
+    const ImpactResult result =
         integrator->integrate(Eigen::MatrixXd::Constant(1, 1, 2.0 / mass),
                               Eigen::VectorXd::Constant(1, -speed), std::span(&law, 1));
     ADD_FAILURE() << "no error; duration " << result.duration << " s, max force "

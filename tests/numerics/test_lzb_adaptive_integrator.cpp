@@ -18,8 +18,8 @@ namespace {
 
 // within_steps_from = 1: the switches kept within the steps (docs/design/adaptive_lzb.md), as a
 // packing's impact keeps them; the default locates a lone contact's or a chain's
-LzbResult lone_contact(double h, double u_minus, const ContactLaw& law, double tolerance,
-                       std::int64_t within_steps_from = LzbAdaptiveOptions{}.within_steps_from) {
+ImpactResult lone_contact(double h, double u_minus, const ContactLaw& law, double tolerance,
+                          std::int64_t within_steps_from = LzbAdaptiveOptions{}.within_steps_from) {
   LzbAdaptiveIntegrator integrator(
       {.tolerance = tolerance, .within_steps_from = within_steps_from});
   const ContactLaw laws[] = {law};
@@ -36,8 +36,8 @@ TEST(AdaptiveLone, WithinTheStepsRestitutionAndPeakForceAreExact) {
   for (double eta : {1.0, 1.5, 2.5})
     for (double e : {0.3, 0.8, 1.0}) {
       const ContactLaw law{.stiffness = 3e9, .exponent = eta, .restitution = e};
-      const LzbResult within = lone_contact(h, u_minus, law, 1e-13, 1);
-      const LzbResult located = lone_contact(h, u_minus, law, 1e-13);
+      const ImpactResult within = lone_contact(h, u_minus, law, 1e-13, 1);
+      const ImpactResult located = lone_contact(h, u_minus, law, 1e-13);
       std::printf("eta %g, e %g: u+ %.3e from -e u-, peak %.3e from located's\n", eta, e,
                   within.velocity(0) + e * u_minus, within.max_force(0) / located.max_force(0) - 1);
       EXPECT_NEAR(within.velocity(0), -e * u_minus, 1e-12) << "eta " << eta << " e " << e;
@@ -53,8 +53,8 @@ TEST(AdaptiveLone, RestitutionAndPeakForceAreExact) {
     for (double eta : {1.0, 1.5})
       for (double e : {0.0, 0.3, 0.8, 1.0}) {
         const ContactLaw law{.stiffness = 3e9, .exponent = eta, .restitution = e, .model = model};
-        const LzbResult result = lone_contact(h, u_minus, law, 1e-13);
-        ASSERT_EQ(result.status, LzbStatus::terminated);
+        const ImpactResult result = lone_contact(h, u_minus, law, 1e-13);
+        ASSERT_EQ(result.status, ImpactStatus::terminated);
         EXPECT_NEAR(result.velocity(0), -e * u_minus, 1e-12)
             << enum_name(model) << " eta " << eta << " e " << e;
         // (1/2) u-^2 / h = K delta_M^(1+eta) / (1+eta), F_M = K delta_M^eta
@@ -70,7 +70,7 @@ TEST(AdaptiveLone, RestitutionAndPeakForceAreExact) {
 TEST(AdaptiveLone, LinearSpringDurationIsAQuarterPeriodPerPhase) {
   const double h = 25.0, stiffness = 4e6;
   for (double e : {0.3, 0.8, 1.0}) {
-    const LzbResult result =
+    const ImpactResult result =
         lone_contact(h, -1.0, {.stiffness = stiffness, .exponent = 1.0, .restitution = e}, 1e-13);
     const double quarter = std::numbers::pi / 2.0 / std::sqrt(h * stiffness);
     EXPECT_NEAR(result.duration / ((1.0 + e) * quarter), 1.0, 1e-11) << e;
@@ -87,8 +87,8 @@ TEST(AdaptiveChain, ElasticChainIsTheExactHertzChain) {
   const int contacts = chain.contacts();
   const std::vector<ContactLaw> laws(contacts, ContactLaw{.stiffness = chain.stiffness});
   LzbAdaptiveIntegrator integrator({.tolerance = 1e-10});
-  const LzbResult result = integrator.integrate(chain.delassus(), chain.struck(), laws);
-  ASSERT_EQ(result.status, LzbStatus::terminated);
+  const ImpactResult result = integrator.integrate(chain.delassus(), chain.struck(), laws);
+  ASSERT_EQ(result.status, ImpactStatus::terminated);
   const Eigen::VectorXd velocity = chain.velocity_after(result.impulse);
   Eigen::VectorXd start = Eigen::VectorXd::Zero(chain.beads);
   start(0) = 1.0;
@@ -112,7 +112,7 @@ TEST(AdaptiveChain, ElasticChainIsTheLimitOfTheImpulseSteps) {
   const Eigen::VectorXd u_minus = chain.struck();
   const std::vector<ContactLaw> laws(contacts, ContactLaw{.stiffness = chain.stiffness});
   LzbAdaptiveIntegrator adaptive({.tolerance = 1e-10});
-  const LzbResult continuous = adaptive.integrate(H, u_minus, laws);
+  const ImpactResult continuous = adaptive.integrate(H, u_minus, laws);
   LzbImpulseIntegrator coarse({.delta_p = 2e-6}), fine({.delta_p = 1e-6});
   const Eigen::VectorXd extrapolated =
       2.0 * fine.integrate(H, u_minus, laws).velocity - coarse.integrate(H, u_minus, laws).velocity;
@@ -134,8 +134,8 @@ TEST(AdaptiveChain, DissipativeChainEndsAsOneBlock) {
     const std::vector<ContactLaw> laws(
         contacts, ContactLaw{.stiffness = chain.stiffness, .restitution = 0.6, .model = model});
     LzbAdaptiveIntegrator adaptive({.tolerance = 1e-10});
-    const LzbResult continuous = adaptive.integrate(H, u_minus, laws);
-    ASSERT_EQ(continuous.status, LzbStatus::terminated);
+    const ImpactResult continuous = adaptive.integrate(H, u_minus, laws);
+    ASSERT_EQ(continuous.status, ImpactStatus::terminated);
     const Eigen::VectorXd velocity = chain.velocity_after(continuous.impulse);
     const double spread = (velocity.array() - 1.0 / chain.beads).abs().maxCoeff();
     std::printf("%s, e = 0.6: adaptive %lld steps, max |v+ - V/21| = %.3g m/s\n",
@@ -143,7 +143,7 @@ TEST(AdaptiveChain, DissipativeChainEndsAsOneBlock) {
     EXPECT_LE(spread, 1e-9);
     if (model == ComplianceModel::bi_stiffness) {  // its switches kept within the steps too
       LzbAdaptiveIntegrator within({.tolerance = 1e-10, .within_steps_from = 1});
-      const LzbResult kept = within.integrate(H, u_minus, laws);
+      const ImpactResult kept = within.integrate(H, u_minus, laws);
       const double kept_spread =
           (chain.velocity_after(kept.impulse).array() - 1.0 / chain.beads).abs().maxCoeff();
       std::printf("within the steps: %lld steps, max |v+ - V/21| = %.3g m/s\n",
@@ -170,8 +170,8 @@ TEST(AdaptiveChain, WorkPerStepDoesNotGrowWithTheChain) {
     const UniformChain chain{.beads = contacts + 1};
     const std::vector<ContactLaw> laws(contacts, ContactLaw{.stiffness = chain.stiffness});
     LzbAdaptiveIntegrator adaptive({.tolerance = 1e-6});
-    const LzbResult result = adaptive.integrate(chain.delassus(), chain.struck(), laws);
-    ASSERT_EQ(result.status, LzbStatus::terminated);
+    const ImpactResult result = adaptive.integrate(chain.delassus(), chain.struck(), laws);
+    ASSERT_EQ(result.status, ImpactStatus::terminated);
     steps.push_back(double(result.steps));
     contacts_per_step.push_back(double(result.contact_steps) / double(result.steps));
     std::printf("%d contacts: %lld steps, %.1f contacts per step\n", contacts,
@@ -213,8 +213,8 @@ TEST(AdaptiveObserver, SamplesAreEvenlySpacedAndBoundedByTheLocatedPeak) {
   LzbAdaptiveIntegrator integrator({.tolerance = 1e-10, .sample_interval = 1e-6});
   const ContactLaw laws[] = {ContactLaw{.stiffness = 3e9, .restitution = 0.8}};
   ImpactHistory history;
-  const LzbResult result = integrator.integrate(Eigen::MatrixXd::Constant(1, 1, h),
-                                                Eigen::VectorXd::Constant(1, -0.7), laws, &history);
+  const ImpactResult result = integrator.integrate(
+      Eigen::MatrixXd::Constant(1, 1, h), Eigen::VectorXd::Constant(1, -0.7), laws, &history);
   ASSERT_GE(history.time.size(), 50u);
   double peak = 0.0;
   for (std::size_t k = 1; k + 1 < history.time.size(); ++k) {

@@ -47,9 +47,9 @@ long allocations_of_impact(double delta_p, bool observe) {
   LzbImpulseIntegrator integrator({.delta_p = delta_p, .sample_every = observe ? 10 : 0});
   PeakObserver observer;
   const long before = allocations.load();
-  const LzbResult result = integrator.integrate(H, u_minus, laws, observe ? &observer : nullptr);
+  const ImpactResult result = integrator.integrate(H, u_minus, laws, observe ? &observer : nullptr);
   const long count = allocations.load() - before;
-  EXPECT_EQ(result.status, LzbStatus::terminated);
+  EXPECT_EQ(result.status, ImpactStatus::terminated);
   EXPECT_GT(result.steps, 1000);
   return count;
 }

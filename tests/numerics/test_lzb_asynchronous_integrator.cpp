@@ -20,7 +20,7 @@ constexpr double kMass1 = 0.02, kMass2 = 0.05;                        // kg
 constexpr double kReducedMass = kMass1 * kMass2 / (kMass1 + kMass2);  // 1/H
 constexpr double kSpeed = 0.7;                                        // m/s, approach
 
-LzbResult two_body_impact(const ContactLaw& law, double delta_p) {
+ImpactResult two_body_impact(const ContactLaw& law, double delta_p) {
   LzbAsynchronousIntegrator integrator({.delta_p = delta_p});
   const Eigen::MatrixXd H = Eigen::MatrixXd::Constant(1, 1, 1.0 / kReducedMass);
   const Eigen::VectorXd u_minus = Eigen::VectorXd::Constant(1, -kSpeed);
@@ -37,8 +37,8 @@ TEST_P(LoneContact, RestitutionConvergesAtSecondOrder) {
     const ContactLaw law{.stiffness = 5e9, .exponent = 1.5, .restitution = e, .model = GetParam()};
     std::vector<double> errors;
     for (int divisions : {100, 200, 400, 800}) {
-      const LzbResult result = two_body_impact(law, natural_impulse / divisions);
-      ASSERT_EQ(result.status, LzbStatus::terminated);
+      const ImpactResult result = two_body_impact(law, natural_impulse / divisions);
+      ASSERT_EQ(result.status, ImpactStatus::terminated);
       errors.push_back(std::abs(result.velocity(0) - e * kSpeed) / kSpeed);
       std::printf("e = %.1f, N = %d: relative error %.3e, %lld kicks\n", e, divisions,
                   errors.back(), static_cast<long long>(result.steps));
@@ -67,7 +67,7 @@ TEST(LoneContactElastic, DurationAndPeakForceMatchTheClosedForm) {
                           std::sqrt(std::numbers::pi) / (a * std::tgamma(1.0 / a + 0.5));
   const double peak_force = law.stiffness * std::pow(max_compression, law.exponent);
 
-  const LzbResult result = two_body_impact(law, kReducedMass * kSpeed / 1000);
+  const ImpactResult result = two_body_impact(law, kReducedMass * kSpeed / 1000);
   std::printf("duration %.6e (closed form %.6e), peak force %.6e (%.6e) at %.6e\n", result.duration,
               duration, result.max_force(0), peak_force, result.time_of_max_force(0));
   EXPECT_NEAR(result.duration, duration, 1e-4 * duration);
@@ -95,8 +95,8 @@ TEST(LoneContactElastic, ChainImpulsesAgreeWithTheSynchronousSteps) {
     std::vector<double> errors;
     for (double share : {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4}) {
       LzbAsynchronousIntegrator asynchronous({.delta_p = natural_impulse * share});
-      const LzbResult result = asynchronous.integrate(H, u_minus, laws);
-      ASSERT_EQ(result.status, LzbStatus::terminated);
+      const ImpactResult result = asynchronous.integrate(H, u_minus, laws);
+      ASSERT_EQ(result.status, ImpactStatus::terminated);
       errors.push_back((result.impulse - limit).cwiseAbs().maxCoeff() / natural_impulse);
       std::printf("e = %.1f, delta_p = %.0e of m V: impulses %.3e of m V from the limit\n", e,
                   share, errors.back());

@@ -19,7 +19,7 @@ constexpr double kMass1 = 0.02, kMass2 = 0.05;                        // kg
 constexpr double kReducedMass = kMass1 * kMass2 / (kMass1 + kMass2);  // 1/H
 constexpr double kSpeed = 0.7;                                        // m/s, approach
 
-LzbResult two_body_impact(const ContactLaw& law, double delta_p) {
+ImpactResult two_body_impact(const ContactLaw& law, double delta_p) {
   LzbOptions options;
   options.delta_p = delta_p;
   LzbImpulseIntegrator integrator(options);
@@ -51,9 +51,9 @@ TEST_P(TwoBodies, OneContactRestitutionIsExactAtAnyDeltaP) {
   const double natural_impulse = kReducedMass * kSpeed;
   for (double e : {0.0, 0.3, 0.8, 1.0}) {
     for (int divisions : {3, 100, 10000}) {
-      const LzbResult result =
+      const ImpactResult result =
           two_body_impact(law_for(exponent, e, model), natural_impulse / divisions);
-      ASSERT_EQ(result.status, LzbStatus::terminated);
+      ASSERT_EQ(result.status, ImpactStatus::terminated);
       EXPECT_NEAR(result.velocity(0), e * kSpeed, 1e-11 * kSpeed)
           << "e = " << e << ", N = " << divisions;
       // the impulse is the change of relative velocity over H
@@ -77,7 +77,7 @@ TEST_P(TwoBodies, ElasticContactDurationAndPeakForceMatchTheClosedForm) {
                           std::sqrt(std::numbers::pi) / (a * std::tgamma(1.0 / a + 0.5));
   const double peak_force = law.stiffness * std::pow(max_compression, exponent);
 
-  const LzbResult result = two_body_impact(law, kReducedMass * kSpeed / 20000);
+  const ImpactResult result = two_body_impact(law, kReducedMass * kSpeed / 20000);
   EXPECT_NEAR(result.duration, duration, 2e-3 * duration);
   EXPECT_NEAR(result.max_force(0), peak_force, 1e-3 * peak_force);
   EXPECT_NEAR(result.time_of_max_force(0), duration / 2, 2e-3 * duration);
@@ -106,8 +106,8 @@ TEST(LzbChain, SparseAndDenseDelassusGiveTheSameImpact) {
   u_minus(0) = -1.0;
   const std::vector<ContactLaw> laws(contacts, hertz(0.9));
   LzbImpulseIntegrator integrator({.delta_p = 1e-5});
-  const LzbResult a = integrator.integrate(sparse, u_minus, laws);
-  const LzbResult b = integrator.integrate(dense, u_minus, laws);
+  const ImpactResult a = integrator.integrate(sparse, u_minus, laws);
+  const ImpactResult b = integrator.integrate(dense, u_minus, laws);
   EXPECT_EQ(a.steps, b.steps);
   EXPECT_EQ(a.impulse, b.impulse);
   EXPECT_EQ(a.velocity, b.velocity);
@@ -124,8 +124,8 @@ TEST(LzbChain, StrikesAtBothEndsGiveASymmetricOutcome) {
   u_minus(0) = u_minus(contacts - 1) = -0.5;
   const std::vector<ContactLaw> laws(contacts, hertz(0.95));
   LzbImpulseIntegrator integrator({.delta_p = 1e-6});
-  const LzbResult result = integrator.integrate(H, u_minus, laws);
-  ASSERT_EQ(result.status, LzbStatus::terminated);
+  const ImpactResult result = integrator.integrate(H, u_minus, laws);
+  ASSERT_EQ(result.status, ImpactStatus::terminated);
   for (int j = 0; j < contacts; ++j)
     EXPECT_NEAR(result.impulse(j), result.impulse(contacts - 1 - j),
                 1e-9 * result.impulse.maxCoeff());
@@ -141,8 +141,8 @@ TEST(LzbChain, WorkPerStepIsIndependentOfChainLength) {
     u_minus(0) = -1.0;
     const std::vector<ContactLaw> laws(contacts, hertz());
     LzbImpulseIntegrator integrator({.delta_p = 1e-4});
-    const LzbResult result = integrator.integrate(H, u_minus, laws);
-    ASSERT_EQ(result.status, LzbStatus::terminated);
+    const ImpactResult result = integrator.integrate(H, u_minus, laws);
+    ASSERT_EQ(result.status, ImpactStatus::terminated);
     contacts_per_step.push_back(double(result.contact_steps) / double(result.steps));
   }
   EXPECT_LT(contacts_per_step[0], 20.0);
@@ -158,7 +158,7 @@ TEST(LzbChain, ObserverSeesTheStartEverySampleAndTheEnd) {
   LzbOptions options{.delta_p = 1e-5, .sample_every = 100, .sampled_contacts = {1, 4}};
   LzbImpulseIntegrator integrator(options);
   ImpactHistory history;
-  const LzbResult result = integrator.integrate(H, u_minus, laws, &history);
+  const ImpactResult result = integrator.integrate(H, u_minus, laws, &history);
   ASSERT_EQ(history.step.size(), std::size_t(result.steps / 100 + 2));
   EXPECT_EQ(history.contacts, (std::vector<Eigen::Index>{1, 4}));
   EXPECT_EQ(history.step.front(), 0);
@@ -180,8 +180,8 @@ TEST(LzbChain, StepLimitIsReported) {
   const Eigen::VectorXd u_minus = Eigen::Vector4d(-1.0, 0.0, 0.0, 0.0);
   const std::vector<ContactLaw> laws(4, hertz());
   LzbImpulseIntegrator integrator({.delta_p = 1e-6, .max_steps = 10});
-  const LzbResult result = integrator.integrate(H, u_minus, laws);
-  EXPECT_EQ(result.status, LzbStatus::step_limit);
+  const ImpactResult result = integrator.integrate(H, u_minus, laws);
+  EXPECT_EQ(result.status, ImpactStatus::step_limit);
   EXPECT_EQ(result.steps, 10);
   EXPECT_NE(result.message.find("max_steps"), std::string::npos);
 }

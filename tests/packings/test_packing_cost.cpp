@@ -114,7 +114,7 @@ TEST(PackingCost, TheAdaptiveLzbsWorkPerReachedContactDoesNotGrowWithThePacking)
               std::to_string(restitution) + R"(},
              "impact": {"integrator": "adaptive", "tolerance": 1e-6},
              "configuration_check": {"enabled": false})"));
-      const numerics::LzbResult& impact = packing.run.impact.result;
+      const numerics::ImpactResult& impact = packing.run.impact.result;
       const auto reached = (impact.max_force.array() > 0.0).count();
       EXPECT_GT(reached, 2 * side * side);  // the wave crossed: most contacts
       // every contact reached switches at least twice (its peak, its release): fewer steps than

@@ -67,9 +67,9 @@ TEST(LzbImpactProblem, NonDiagonalMassGivesTheSameImpactAsTheDiagonalOne) {
   LzbImpactProblem a(options), b(options);
   const kernel::ImpactReport by_bodies = a.solve(*diagonal, closed, 0.0);
   const kernel::ImpactReport by_q = b.solve(*transformed, closed, 0.0);
-  EXPECT_EQ(by_bodies.steps, by_q.steps);
-  EXPECT_LE((by_bodies.impulse - by_q.impulse).cwiseAbs().maxCoeff(),
-            1e-12 * by_bodies.impulse.maxCoeff());
+  EXPECT_EQ(by_bodies.result.steps, by_q.result.steps);
+  EXPECT_LE((by_bodies.result.impulse - by_q.result.impulse).cwiseAbs().maxCoeff(),
+            1e-12 * by_bodies.result.impulse.maxCoeff());
   const Eigen::Vector3d after = A * body->velocity();
   for (int i = 0; i < 3; ++i)
     EXPECT_NEAR(after(i), bodies[i]->velocity()(0), 1e-11) << "body " << i;
@@ -116,8 +116,8 @@ TEST(LzbImpactProblem, RelativeStepResolvesWeakAndStrongImpactsAlike) {
     options.relative_delta_p = 1e-3;
     LzbImpactProblem problem(options);
     const kernel::ImpactReport report = problem.solve(*system, std::vector<Index>{0}, 0.0);
-    EXPECT_NEAR(report.velocity_after(0), 0.5 * speed, 1e-12 * speed);
-    steps.push_back(report.steps);
+    EXPECT_NEAR(report.result.velocity(0), 0.5 * speed, 1e-12 * speed);
+    steps.push_back(report.result.steps);
   }
   EXPECT_EQ(steps[0], steps[1]);
 }

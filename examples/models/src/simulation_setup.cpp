@@ -3,8 +3,9 @@
 #include "mimpact/common/error.hpp"
 #include "mimpact/kernel/json_document.hpp"
 #include "mimpact/kernel/parameters.hpp"
-#include "mimpact/kernel/registry.hpp"
-#include "mimpact/plugins/register_plugins.hpp"
+#include "mimpact/plugins/acceleration_lcp_problem.hpp"
+#include "mimpact/plugins/event_driven_integrator.hpp"
+#include "mimpact/plugins/lzb_impact_problem.hpp"
 
 namespace mimpact::models {
 
@@ -24,12 +25,10 @@ plugins::LzbImpactOptions impact_options_from_command_line(
 
 kernel::Simulation make_simulation(std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                    const SimulationSetup& setup) {
-  plugins::register_plugins();
   return kernel::Simulation(
-      std::move(system),
-      kernel::integrators().create("event-driven", kernel::to_parameters(setup.integrator)),
-      {.impacts = kernel::impact_problems().create("lzb", kernel::to_parameters(setup.impacts)),
-       .contact_forces = kernel::contact_force_problems().create("acceleration-lcp")});
+      std::move(system), std::make_unique<plugins::EventDrivenIntegrator>(setup.integrator),
+      {.impacts = std::make_unique<plugins::LzbImpactProblem>(setup.impacts),
+       .contact_forces = std::make_unique<plugins::AccelerationLcpProblem>()});
 }
 
 }  // namespace mimpact::models

@@ -24,7 +24,7 @@ struct ToleranceRow {
 struct ToleranceStudy {
   std::vector<ToleranceRow> rows;
   double finest_tolerance = 0.0;      // t / 10 of the last row
-  numerics::LzbResult finest;         // the run at finest_tolerance
+  numerics::ImpactResult finest;      // the run at finest_tolerance
   Eigen::VectorXd finest_velocities;  // its generalized post-impact velocities
   bool converged = false;
 };

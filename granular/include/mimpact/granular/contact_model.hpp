@@ -50,13 +50,13 @@ double impact_overlap(const ContactModel& model);
 
 // The impulse that sets the impact's scale (N s): the smallest momentum m |v| of a moving
 // body, i.e. of a striker. delta_p is best chosen as a share of it.
-double natural_impulse(const ContactModel& model);
+double smallest_momentum(const ContactModel& model);
 // The largest momentum m |v| of a moving body (N s): the impact takes at least this over
 // delta_p steps to take it up.
 double largest_momentum(const ContactModel& model);
 // The natural impulse of the approaching contacts, max_j |u_j-| / H_jj (N s): what
-// relative_delta_p is a share of (plugins::LzbImpactOptions).
-double contact_impulse(const ContactModel& model);
+// relative_delta_p is a share of (numerics::natural_impulse).
+double natural_impulse(const ContactModel& model);
 
 // Throws InvalidInput when an approaching contact's natural energy, m u^2 / 2 with m = 1 / H_jj,
 // leaves [1e-250, 1e250] J: the integrators' tolerances are this energy times factors down to
@@ -64,7 +64,7 @@ double contact_impulse(const ContactModel& model);
 void check_impact_scales(const ContactModel& model);
 
 // Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
-// resolve the impact: finite, below the natural impulse m V (a coarser step resolves no
+// resolve the impact: finite, below the smallest momentum m V (a coarser step resolves no
 // approach, so the strikers would pass through their targets), and not so fine that the
 // impact needs more than max_steps steps (it takes at least the largest momentum over
 // delta_p).

@@ -16,7 +16,7 @@ struct ImpactOutcome {
   // the impacts' result, aggregated, whichever method computed it (the LZB integrators or the
   // compliant contacts): per contact the impulse, peak force and its time, work and stored
   // energy; the steps and duration
-  numerics::LzbResult result;
+  numerics::ImpactResult result;
   Eigen::VectorXd velocity_after;  // per coordinate (m/s), after the last impact
   double impact_time = 0.0;        // s, when the first impact began
   double wall_time = 0.0;          // s spent in the impact computations

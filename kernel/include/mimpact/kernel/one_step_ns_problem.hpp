@@ -1,51 +1,29 @@
 #pragma once
 
-#include <array>
-#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/numerics/impact_result.hpp"
 
 namespace mimpact::kernel {
 
-// How the solution of an impact ended.
-enum class ImpactStatus {
-  terminated,  // every contact has come out of the impact
-  step_limit,  // the integration of the impact stopped at its step limit: no outcome
-};
-constexpr auto enum_names(ImpactStatus) {
-  using Name = std::pair<ImpactStatus, std::string_view>;
-  return std::array{Name{ImpactStatus::terminated, "terminated"},
-                    Name{ImpactStatus::step_limit, "step_limit"}};
-}
-
-// What solving one impact did. Per-contact arrays follow `interactions`.
+// What solving one impact did: the integration's own result (numerics::ImpactResult: status,
+// u+, P, forces, work and counts, per contact following `interactions`) and what the problem
+// adds around it.
 struct ImpactReport {
-  ImpactStatus status = ImpactStatus::terminated;
-  std::string message;              // why it did not terminate; empty otherwise
   double time = 0.0;                // s, when the impact happened
   std::vector<Index> interactions;  // the closed contacts taking part
   VectorXd velocity_before;         // u- (m/s)
-  VectorXd velocity_after;          // u+ (m/s)
-  VectorXd impulse;                 // P (N s)
-  VectorXd max_force;               // N; empty when the law has no force history
-  VectorXd time_of_max_force;       // s from the start of the impact
-  VectorXd velocity_resolution;     // below this |u_j| the impact cannot tell 0 apart
-  // the generalized velocities of the whole system (global coordinates), v- and v+
+  numerics::ImpactResult result;    // max_force empty when the law has no force history
+  VectorXd velocity_resolution;     // m/s: below this |u_j| the impact cannot tell 0 apart
+  // the generalized velocities of the whole system (global coordinates), v- and v+ (v- when
+  // the result has no outcome)
   VectorXd generalized_velocity_before;
   VectorXd generalized_velocity_after;
-  std::int64_t steps = 0;          // steps of the impact integration, if any
-  std::int64_t contact_steps = 0;  // contacts updated, summed over the steps: the work
-  double residual_energy = 0.0;    // J held below the termination tolerance at the end
-  // per contact (J), when the law computes them: the work taken from the bodies (the integral
-  // of -u_j dP_j) and the potential energy held at the end; their difference is dissipated
-  VectorXd work, stored_energy;
-  double duration = 0.0;   // s, the physical duration of the impact
   double wall_time = 0.0;  // s spent solving it
 };
 

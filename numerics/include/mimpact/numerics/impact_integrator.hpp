@@ -11,38 +11,12 @@
 #include "mimpact/numerics/contact_law.hpp"
 #include "mimpact/numerics/delassus.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/numerics/impact_result.hpp"
 
 // The seam of every way of integrating an LZB impact (the impulse steps, the asynchronous steps,
 // the adaptive integration of the continuous limit, and the next ones): one interface, one law
 // table, one check of the input and one assembly of the result (Drake's IntegratorBase).
 namespace mimpact::numerics {
-
-enum class LzbStatus {
-  terminated,  // every contact has come out of the impact
-  step_limit,  // options.max_steps taken before the impact ended
-};
-
-std::string_view to_string(LzbStatus status);
-
-struct LzbResult {
-  LzbStatus status = LzbStatus::terminated;
-  Eigen::VectorXd impulse;            // P_j (N s), cumulated over the impact
-  Eigen::VectorXd velocity;           // post-impact relative velocities u+ = u- + H P (m/s)
-  Eigen::VectorXd max_force;          // largest force of each contact (N)
-  Eigen::VectorXd time_of_max_force;  // when it occurred (s from the start of the impact)
-  double residual_energy = 0.0;       // potential energy below tolerance left at the end (J)
-  // The energy ledger, per contact (J): the work the contact took from the bodies, the integral
-  // of -u_j dP_j, and its potential energy at the end (summing to residual_energy). Their
-  // difference is what the contact dissipated. Summed over the contacts, the work is the
-  // kinetic energy lost, to round-off: each step's work is the trapezoidal rule on u, exact
-  // for the linear dependence of u on P (du = H dP).
-  Eigen::VectorXd work;
-  Eigen::VectorXd stored_energy;
-  std::int64_t steps = 0;          // steps taken (the integrator says which)
-  std::int64_t contact_steps = 0;  // contacts updated, summed over the steps: the work
-  double duration = 0.0;           // physical duration of the impact (s)
-  std::string message;             // why the impact did not terminate; empty otherwise
-};
 
 // What every integrator reads of contact j's law, computed once per impact (docs/model.md,
 // section 3): one row of 64 bytes, read together in the step loops.
@@ -83,16 +57,13 @@ class ImpactIntegrator {
   // u_minus: pre-impact relative velocities (at least one < 0); laws: one per contact; H
   // symmetric with a positive diagonal. Throws InvalidInput naming a bad entry, and Error when
   // the impact's velocities, forces or duration overflow double precision.
-  LzbResult integrate(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-  LzbResult integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
-  LzbResult integrate(const Delassus& delassus, const Eigen::VectorXd& u_minus,
-                      std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
+  ImpactResult integrate(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
+                         std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
+  ImpactResult integrate(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
+                         std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
+  ImpactResult integrate(const Delassus& delassus, const Eigen::VectorXd& u_minus,
+                         std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
 
-  // The principal impulse step (N s) of the integrators that take steps of impulse; throws
-  // InvalidInput unless it is finite and > 0, and for an integrator that takes none.
-  virtual void set_delta_p(double delta_p);
   // The contacts the observer sees in the next impacts (empty: all of them).
   void set_sampled_contacts(std::vector<Eigen::Index> contacts) {
     sampled_contacts_ = std::move(contacts);
@@ -123,16 +94,16 @@ class ImpactIntegrator {
 
   // Fills the result's per-contact fields (impulse, max_force, time_of_max_force, work,
   // stored_energy) and counts (steps, contact_steps, duration, status, message).
-  virtual void run(const Input& input, ImpactObserver* observer, LzbResult& result) = 0;
+  virtual void run(const Input& input, ImpactObserver* observer, ImpactResult& result) = 0;
   // What the observer is sent through: the sampled contacts' values, gathered. Reset for each
   // impact before run().
   ImpactSampler& sampler() { return sampler_; }
 
  private:
-  LzbResult integrate_checked(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
-                              std::span<const ContactLaw> laws,
-                              const Eigen::SparseMatrix<double>* mobility,
-                              ImpactObserver* observer);
+  ImpactResult integrate_checked(const Eigen::SparseMatrix<double>& H,
+                                 const Eigen::VectorXd& u_minus, std::span<const ContactLaw> laws,
+                                 const Eigen::SparseMatrix<double>* mobility,
+                                 ImpactObserver* observer);
 
   std::vector<Eigen::Index> sampled_contacts_;
   ImpactSampler sampler_;

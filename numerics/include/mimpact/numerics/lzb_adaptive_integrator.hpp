@@ -61,7 +61,7 @@ class LzbAdaptiveIntegrator : public ImpactIntegrator {
                                       const Eigen::VectorXd& u_minus) const override;
 
  protected:
-  void run(const Input& input, ImpactObserver* observer, LzbResult& result) override;
+  void run(const Input& input, ImpactObserver* observer, ImpactResult& result) override;
 
  private:
   using Impact = adaptive_lzb::Impact;  // its buffers reused from one impact to the next

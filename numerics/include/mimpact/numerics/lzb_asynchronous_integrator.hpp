@@ -9,7 +9,9 @@
 #include "mimpact/numerics/contact_law.hpp"
 #include "mimpact/numerics/impact_integrator.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/numerics/impulse_step_integrator.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
+#include "mimpact/numerics/lzb_options.hpp"
 
 namespace mimpact::numerics {
 
@@ -37,19 +39,14 @@ namespace mimpact::numerics {
 // Why: in a packing the wake behind the front stays loaded with forces far below the front's.
 // The synchronous steps update every loaded contact at every step of the strongest; here a
 // contact costs in proportion to the impulse it carries, about P_j / delta_p kicks, which
-// follows the contacts the wave reaches. In `LzbResult`, `steps` and `contact_steps` both
+// follows the contacts the wave reaches. In `ImpactResult`, `steps` and `contact_steps` both
 // count kicks, and the observer's principal_impulse is the sum of all impulses.
-class LzbAsynchronousIntegrator : public ImpactIntegrator {
+class LzbAsynchronousIntegrator : public ImpulseStepIntegrator {
  public:
+  // The options of LzbImpulseIntegrator; sample_every counts kicks.
   explicit LzbAsynchronousIntegrator(LzbOptions options = {});
 
   std::string_view name() const override { return "asynchronous"; }
-  // The options of LzbImpulseIntegrator; sample_every counts kicks.
-  const LzbOptions& options() const { return options_; }
-  void set_delta_p(double delta_p) override;
-  // the impulse steps' tol_u_j
-  Eigen::VectorXd velocity_resolution(const Eigen::VectorXd& diagonal,
-                                      const Eigen::VectorXd& u_minus) const override;
 
   // The state of one contact. u lives apart: neighbours' kicks write it.
   struct Contact {
@@ -75,11 +72,11 @@ class LzbAsynchronousIntegrator : public ImpactIntegrator {
   };
 
  protected:
-  void run(const Input& input, ImpactObserver* observer, LzbResult& result) override;
+  void take_steps(const Input& input, ImpactObserver* observer, ImpactResult& result) override;
 
  private:
   template <class Delassus>
-  void kicks(const Delassus& H, ImpactObserver* observer, LzbResult& result);
+  void kicks(const Delassus& H, ImpactObserver* observer, ImpactResult& result);
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
                const LawTable& laws);
   void drift(Eigen::Index j, double time);
@@ -98,7 +95,6 @@ class LzbAsynchronousIntegrator : public ImpactIntegrator {
   void schedule(Eigen::Index j, double due);
   void notify(ImpactObserver* observer, std::int64_t steps, double time);
 
-  LzbOptions options_;
   const LawConstants* laws_ = nullptr;  // the law table of the impact being integrated
   std::vector<Contact> contacts_;
   std::vector<double> u_;

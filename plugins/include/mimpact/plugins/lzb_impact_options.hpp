@@ -36,14 +36,13 @@ struct LzbImpactOptions {
   std::optional<LzbIntegrator> integrator;
   // The impulse steps' principal step (N s), synchronous or asynchronous.
   std::optional<double> delta_p;
-  // Or, for each impact, delta_p = relative_delta_p * max_j |u_j-| / H_jj, this share of its
-  // natural impulse (the impulse that stops its fastest contact alone): impacts of very
-  // different strengths (a ball's shrinking bounces) are then resolved alike.
+  // Or this share of each impact's natural impulse (numerics::LzbOptions::relative_delta_p).
   std::optional<double> relative_delta_p;
   // The adaptive integrator's relative accuracy (LzbAdaptiveOptions::tolerance).
   std::optional<double> tolerance;
   // The impulse steps' other options; max_steps and sampled_contacts (interactions of the
-  // system) serve the adaptive integrator too. Their delta_p is the one above.
+  // system) serve the adaptive integrator too. Their delta_p and relative_delta_p are the ones
+  // above.
   numerics::LzbOptions impulse_steps;
   // The adaptive integrator's sample_interval and within_steps_from (its other options come
   // from the fields above).
@@ -53,12 +52,12 @@ struct LzbImpactOptions {
   static void visit_fields(Self& self, Visit&& field) {
     field("integrator", self.integrator);
     field("delta_p", self.delta_p, positive("N s"));
-    field("relative_delta_p", self.relative_delta_p,
-          within(0.0, 1.0, "a share of each impact's natural impulse", true, true));
+    field("relative_delta_p", self.relative_delta_p, numerics::LzbOptions::kRelativeDeltaPRange);
     field("tolerance", self.tolerance, numerics::LzbAdaptiveOptions::kToleranceRange);
     numerics::LzbOptions::visit_fields(self.impulse_steps,
                                        [&](std::string_view name, auto& value, auto&&... allowed) {
-                                         if (name != "delta_p") field(name, value, allowed...);
+                                         if (name != "delta_p" && name != "relative_delta_p")
+                                           field(name, value, allowed...);
                                        });
     numerics::LzbAdaptiveOptions::visit_fields(
         self.adaptive, [&](std::string_view name, auto& value, auto&&... allowed) {
@@ -70,7 +69,7 @@ struct LzbImpactOptions {
   LzbIntegrator chosen_integrator() const {
     return integrator.value_or(LzbIntegrator::impulse_step);
   }
-  // The impulse steps' options, delta_p included (relative_delta_p sets it impact by impact).
+  // The impulse steps' options, delta_p and relative_delta_p included.
   numerics::LzbOptions impulse_step_options() const;
   // The adaptive integrator's options, with max_steps and sampled_contacts from impulse_steps.
   numerics::LzbAdaptiveOptions adaptive_options() const;
@@ -78,10 +77,13 @@ struct LzbImpactOptions {
     return tolerance.value_or(numerics::LzbAdaptiveOptions{}.tolerance);
   }
 
-  // The one rule: every field in its range, and no field of an integrator not chosen (delta_p
-  // or relative_delta_p with "adaptive", tolerance with the impulse steps), nor delta_p with
-  // relative_delta_p. Throws InvalidInput "OWNER: ..." naming each field as `labels` does
-  // ("impact.delta_p" in a scene, "--delta-p" when the command line gave it).
+  // The fields' cross rules, as Ceres's TrustRegionOptionsAreValid: no field of an integrator
+  // not chosen (delta_p or relative_delta_p with "adaptive", tolerance with the impulse steps),
+  // nor delta_p with relative_delta_p. The message naming the fields as `labels` does
+  // ("impact.delta_p" in a scene, "--delta-p" when the command line gave it), or "" when they
+  // agree.
+  std::string conflict(const fields::Labels& labels = {}) const;
+  // The one check: every field in its range, then conflict(). Throws InvalidInput "OWNER: ...".
   void check(std::string_view owner, const fields::Labels& labels = {}) const;
 };
 

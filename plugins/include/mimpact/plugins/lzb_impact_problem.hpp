@@ -30,9 +30,6 @@ class LzbImpactProblem : public kernel::ImpactProblem {
   const LzbImpactOptions& options() const { return options_; }
 
  private:
-  numerics::LzbResult integrate(const numerics::Delassus& delassus, const Eigen::VectorXd& u_minus,
-                                numerics::ImpactObserver* observer);
-
   LzbImpactOptions options_;
   std::unique_ptr<numerics::ImpactIntegrator> integrator_;
   std::vector<numerics::ContactLaw> laws_;

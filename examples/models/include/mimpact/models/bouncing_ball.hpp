@@ -34,7 +34,7 @@ class BounceRecord : public kernel::SimulationObserver {
                  const kernel::ImpactReport& report) override {
     times.push_back(report.time);
     heights.push_back(simulation.system().system(0).position()(0));
-    speeds.push_back(report.velocity_after(0));
+    speeds.push_back(report.result.velocity(0));
   }
   kernel::EventStatus on_step(const kernel::Simulation&, const kernel::StepReport& step) override {
     if (!resting && step.contact_forces && step.contact_forces->force.size())
