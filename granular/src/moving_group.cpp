@@ -22,12 +22,6 @@ Eigen::Vector3d read(const double* y, int dimension) {
   return x;
 }
 
-// N: an elastic Hertz contact's force K delta^(3/2) at an overlap >= 0 (m), as
-// ContactLaw::force forms it, written once for the right-hand side and the peaks alike
-double hertz_force(double stiffness, double overlap) {
-  return stiffness * (overlap * std::sqrt(overlap));
-}
-
 }  // namespace
 
 void MovingGroup::add_member(std::int32_t body) {
@@ -278,7 +272,7 @@ void MovingGroup::rhs_in(const double* y, double* dydt) {
       const double distance = std::sqrt(squared[j]);
       const double gap = reach[first + j] - distance;
       const double overlap = gap > 0.0 ? gap : 0.0;  // std::max's reference is a branch to gcc
-      force[j] = hertz_force(stiffness[first + j], overlap);
+      force[j] = numerics::hertz_force(stiffness[first + j], overlap);
       push[j] = force[j] / distance;
     }
     for (std::size_t j = 0; j < count; ++j) {  // the accelerations, in the springs' order

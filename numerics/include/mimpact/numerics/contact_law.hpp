@@ -65,6 +65,12 @@ inline double power_law(double x, double exponent) {
   return std::pow(x, exponent);
 }
 
+// K delta^(3/2), Hertz's force (N) at overlap delta >= 0 (m) for a stiffness K (N / m^(3/2)):
+// the one expression every elastic Hertz contact is evaluated by, to its last bit.
+inline double hertz_force(double stiffness, double delta) {
+  return stiffness * (delta * std::sqrt(delta));
+}
+
 inline double ContactLaw::force(double delta) const {
   return stiffness * power_law(delta, exponent);
 }

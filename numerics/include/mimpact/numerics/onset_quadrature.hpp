@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
@@ -8,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "mimpact/numerics/contact_law.hpp"
 
@@ -111,45 +113,89 @@ struct StepQuadrature {
   const std::array<double, Stages>& position_weights;
 };
 
-template <std::size_t Stages>
-OnsetQuadrature contact_step_quadrature(const StepSeparation& model, const ContactOverStep& contact,
-                                        const StepQuadrature<Stages>& step) {
-  const double reach = contact.reach, max_compression = contact.max_compression;
-  const double opening = contact.opening;
-  const ContactLaw& law = contact.law;
-  auto separation = [&](double s) { return model.at(s); };
-  auto overlap = [&](double s) { return reach - separation(s).norm(); };
-  const double e = law.restitution;
-  const bool hysteretic = e < 1.0;
-  const bool hertz = !hysteretic && law.exponent == 1.5;
+namespace detail {
+
+// contact_step_quadrature's stages: the force along the model, the spans of one history between
+// its corners, the history's changes, and what the step's own weights took.
+class ContactStepQuadrature {
+ public:
+  ContactStepQuadrature(const StepSeparation& model, const ContactOverStep& contact)
+      : model_(model),
+        contact_(contact),
+        hysteretic_(contact.law.restitution < 1.0),
+        hertz_(!hysteretic_ && contact.law.exponent == 1.5) {}
+
+  // The force along the model and its history's changes, from the step's start to its end.
+  void integrate_over_step() {
+    double from = 0.0, history = contact_.max_compression;
+    bool turned = false;  // the last change
+    while (hysteretic_ && out_.change_count < out_.changes.size()) {
+      const double turn =
+          first_crossing([&](double s) { return closing(s); }, from, turned,
+                         [&](double at) { return overlap(at) > std::max(history, 0.0); });
+      const double open =
+          history > 0.0 ? first_crossing([&](double s) { return contact_.opening - overlap(s); },
+                                         from, false, [](double) { return true; })
+                        : 2.0;
+      const double next = std::min(turn, open);
+      if (next > 1.0) break;
+      integrate_part(from, next, history);
+      turned = next == turn;
+      history = turned ? overlap(turn) : 0.0;
+      out_.changes[out_.change_count++] = {.s = next, .history = history};
+      from = next;
+    }
+    integrate_part(from, 1.0, history);
+  }
+
+  // Less what the right-hand side took at the step's nodes.
+  template <std::size_t Stages>
+  OnsetQuadrature less_the_step(const StepQuadrature<Stages>& step) {
+    for (std::size_t i = 0; i < Stages; ++i) {
+      const Force f = force(step.nodes[i], contact_.max_compression);
+      out_.impulse -= step.weights[i] * f.vector;
+      out_.magnitude -= step.weights[i] * f.magnitude;
+      out_.moment -= step.position_weights[i] * f.vector;
+    }
+    return out_;
+  }
+
+ private:
+  static constexpr int kSamples = 8;  // fine enough for the few corners a step's cubic may have
+  using Gauss = boost::math::quadrature::gauss<double, 8>;
   struct Force {
     Eigen::Vector3d vector = Eigen::Vector3d::Zero();
     double magnitude = 0.0;
   };
-  auto force = [&](double s, double history) {
-    const Eigen::Vector3d r = separation(s);
-    const double distance = r.norm(), delta = reach - distance;
+
+  double overlap(double s) const { return contact_.reach - model_.at(s).norm(); }
+  // r . r': from closing to opening where it crosses 0
+  double closing(double s) const { return model_.at(s).dot(model_.rate(s)); }
+
+  Force force(double s, double history) const {
+    const Eigen::Vector3d r = model_.at(s);
+    const double distance = r.norm(), delta = contact_.reach - distance;
     Force f;
     if (delta <= 0.0) return f;
     // (an elastic Hertz force written as the right-hand side writes it, to its last bit)
-    f.magnitude =
-        hertz ? law.stiffness * delta * std::sqrt(delta) : hysteresis_force(law, delta, history);
+    f.magnitude = hertz_ ? hertz_force(contact_.law.stiffness, delta)
+                         : hysteresis_force(contact_.law, delta, history);
     f.vector = (f.magnitude / distance) * r;
     return f;
-  };
-  OnsetQuadrature out;
-  constexpr int kSamples = 8;  // fine enough for the few corners a step's cubic may have
-  auto root = [](auto&& f, double a, double b, double fa, double fb) {
+  }
+
+  template <class F>
+  static double root(F&& f, double a, double b, double fa, double fb) {
     if (fb == 0.0) return b;
     std::uintmax_t iterations = 100;
     const auto [lo, hi] = boost::math::tools::toms748_solve(
         f, a, b, fa, fb, boost::math::tools::eps_tolerance<double>(48), iterations);
     return 0.5 * (lo + hi);
-  };
-  // the spans of one history, from its corners (where the overlap crosses a threshold)
-  using Gauss = boost::math::quadrature::gauss<double, 8>;
-  auto integrate_from = [&](double end, double length, double history) {
-    // (length < 0: the span ends at `end`)
+  }
+
+  // One span of one history, by Gauss-Legendre in u with s = end + length u^2 (length < 0: the
+  // span ends at `end`), smooth across a touch at `end`.
+  void integrate_from(double end, double length, double history) {
     const auto& x = Gauss::abscissa();
     const auto& w = Gauss::weights();
     for (std::size_t k = 0; k < x.size(); ++k)
@@ -158,14 +204,18 @@ OnsetQuadrature contact_step_quadrature(const StepSeparation& model, const Conta
         const double u = 0.5 * (1.0 + sign * x[k]);
         const double s = end + length * u * u;
         const Force f = force(s, history);
-        out.impulse += w[k] * std::abs(length) * u * f.vector;
-        out.moment += (w[k] * std::abs(length) * u * (1.0 - s)) * f.vector;
-        out.magnitude += w[k] * std::abs(length) * u * f.magnitude;
+        out_.impulse += w[k] * std::abs(length) * u * f.vector;
+        out_.moment += (w[k] * std::abs(length) * u * (1.0 - s)) * f.vector;
+        out_.magnitude += w[k] * std::abs(length) * u * f.magnitude;
       }
-  };
-  auto integrate_part = [&](double from, double to, double history) {
+  }
+
+  // The spans of one history, from its corners (where the overlap crosses the force's zero or
+  // loading's start).
+  void integrate_part(double from, double to, double history) {
+    const double e = contact_.law.restitution;
     std::array<double, 2> thresholds{0.0, -1.0};  // the force's zero, and loading's start
-    if (hysteretic && history > 0.0) thresholds = {history * (1.0 - e * e), history};
+    if (hysteretic_ && history > 0.0) thresholds = {history * (1.0 - e * e), history};
     std::array<double, 2 + 2 * kSamples> corner{};  // ascending: the part's ends, then roots
     std::array<bool, 2 + 2 * kSamples> touches{};
     std::size_t count = 0;
@@ -202,14 +252,12 @@ OnsetQuadrature contact_step_quadrature(const StepSeparation& model, const Conta
         integrate_from(first, last - first, history);
       }
     }
-  };
-  // the history's changes, each where its function first crosses from < 0 to >= 0 after the
-  // last: a turn, the separation's rate r . r' from closing to opening above the history; an
-  // opening, the overlap down to `opening` from a history
-  auto closing = [&](double s) { return separation(s).dot(model.rate(s)); };
-  auto opened = [&](double s) { return opening - overlap(s); };
-  // (`crossed`: f's own crossing is at `from`, the last change: the next needs f < 0 again)
-  auto first_crossing = [&](auto&& f, double from, bool crossed, auto&& accept) {
+  }
+
+  // Where f first crosses from < 0 to >= 0 after `from` at a point `accept` takes, 2 if nowhere;
+  // `crossed`: f's own crossing is at `from`, the last change: the next needs f < 0 again.
+  template <class F, class Accept>
+  double first_crossing(F&& f, double from, bool crossed, Accept&& accept) const {
     double before = from, value_before = crossed ? 0.0 : f(from);
     for (int m = 1; m <= kSamples; ++m) {
       const double s = from + (1.0 - from) * double(m) / kSamples, value_here = f(s);
@@ -221,30 +269,22 @@ OnsetQuadrature contact_step_quadrature(const StepSeparation& model, const Conta
       value_before = value_here;
     }
     return 2.0;  // none
-  };
-  double from = 0.0, history = max_compression;
-  bool turned = false;  // the last change
-  while (hysteretic && out.change_count < out.changes.size()) {
-    const double turn = first_crossing(
-        closing, from, turned, [&](double at) { return overlap(at) > std::max(history, 0.0); });
-    const double open =
-        history > 0.0 ? first_crossing(opened, from, false, [](double) { return true; }) : 2.0;
-    const double next = std::min(turn, open);
-    if (next > 1.0) break;
-    integrate_part(from, next, history);
-    turned = next == turn;
-    history = turned ? overlap(turn) : 0.0;
-    out.changes[out.change_count++] = {.s = next, .history = history};
-    from = next;
   }
-  integrate_part(from, 1.0, history);
-  for (std::size_t i = 0; i < Stages; ++i) {  // what the right-hand side took
-    const Force f = force(step.nodes[i], max_compression);
-    out.impulse -= step.weights[i] * f.vector;
-    out.magnitude -= step.weights[i] * f.magnitude;
-    out.moment -= step.position_weights[i] * f.vector;
-  }
-  return out;
+
+  const StepSeparation& model_;
+  const ContactOverStep& contact_;
+  bool hysteretic_, hertz_;
+  OnsetQuadrature out_;
+};
+
+}  // namespace detail
+
+template <std::size_t Stages>
+OnsetQuadrature contact_step_quadrature(const StepSeparation& model, const ContactOverStep& contact,
+                                        const StepQuadrature<Stages>& step) {
+  detail::ContactStepQuadrature quadrature(model, contact);
+  quadrature.integrate_over_step();
+  return quadrature.less_the_step(step);
 }
 
 // The same for an elastic Hertz contact along the cubic Hermite of its separation (m) from the
