@@ -4,12 +4,11 @@
 #include <chrono>
 #include <cmath>
 
+#include "compliant_engine.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
-#include "mimpact/granular/moving_contacts.hpp"
 #include "mimpact/kernel/simulation.hpp"
 #include "mimpact/plugins/acceleration_lcp_problem.hpp"
-#include "mimpact/plugins/compliant_integrator.hpp"
 #include "mimpact/plugins/event_driven_integrator.hpp"
 #include "mimpact/plugins/lzb_impact_problem.hpp"
 
@@ -85,71 +84,6 @@ class Impacts : public kernel::SimulationObserver {
   ImpactOutcome result_;
 };
 
-// Samples the recorded contacts and bodies of a compliant run, and every frame_every-th sample
-// the whole scene; ends a free scene once it has come apart.
-class CompliantWatch : public kernel::SimulationObserver {
- public:
-  CompliantWatch(const RecordSpec& record, int dimension, int frame_every, bool precompressed,
-                 bool touching_at_start, RecordingBudget budget)
-      : record_(record),
-        frame_every_(frame_every),
-        precompressed_(precompressed),
-        budget_(std::move(budget)) {
-    // a striker with no gap touches at t = 0: the impact starts at once, with no closing event
-    if (touching_at_start) first_contact_ = 0.0;
-    series_.contacts = record.contacts;
-    series_.bodies = record.bodies;
-    series_.dimension = dimension;
-  }
-
-  void on_output(const kernel::Simulation& s) override {
-    const kernel::ContactForceHistory& history = *s.integrator().contact_force_history();
-    const kernel::NonSmoothDynamicalSystem& system = s.system();
-    series_.time.push_back(s.time());
-    std::vector<double> forces, velocities;
-    for (int c : record_.contacts) forces.push_back(history.force(c));
-    for (int b : record_.bodies)
-      for (double v : system.system(b).velocity()) velocities.push_back(v);
-    series_.force.push_back(forces);
-    series_.velocity.push_back(velocities);
-    const bool frame =
-        frame_every_ > 0 && (series_.time.size() - 1) % std::size_t(frame_every_) == 0;
-    budget_.add(frame);
-    if (frame) {
-      frames_.time.push_back(s.time());
-      frames_.force.emplace_back(history.force.data(), history.force.data() + history.force.size());
-      std::vector<double> all;
-      for (kernel::Index b = 0; b < system.system_count(); ++b)
-        for (double v : system.system(b).velocity()) all.push_back(v);
-      frames_.velocity.push_back(std::move(all));
-    }
-  }
-
-  kernel::EventStatus on_step(const kernel::Simulation& s,
-                              const kernel::StepReport& step) override {
-    if (!step.closing.empty() && first_contact_ < 0.0) first_contact_ = step.time;
-    if (!step.detaching.empty()) last_opening_ = step.time;
-    if (!precompressed_ && first_contact_ >= 0.0 &&
-        s.integrator().contact_force_history()->all_open)
-      return kernel::EventStatus::terminate("the scene has come apart");
-    return kernel::EventStatus::proceed();
-  }
-
-  double first_contact() const { return first_contact_; }
-  double last_opening() const { return last_opening_; }
-  TimeSeries take_series() { return std::move(series_); }
-  Frames take_frames() { return std::move(frames_); }
-
- private:
-  const RecordSpec& record_;
-  int frame_every_;
-  bool precompressed_;
-  TimeSeries series_;
-  Frames frames_;
-  RecordingBudget budget_;
-  double first_contact_ = -1.0, last_opening_ = -1.0;
-};
-
 // What one sample and one frame of a compliant run keep (bytes), as ImpactRecorder counts them.
 RecordingBudget compliant_budget(const ContactModel& model, const RecordSpec& record,
                                  int frame_every, const RunLimits& limits) {
@@ -158,19 +92,6 @@ RecordingBudget compliant_budget(const ContactModel& model, const RecordSpec& re
   const double all = double(model.contact_count() + model.mass.size());
   return RecordingBudget(150.0 + 60.0 * columns, 60.0 * all, limits,
                          sampling_fields(record, true, frame_every));
-}
-
-// Overlaps below this share of the impact's are never integrated (CompliantOptions): their
-// force is below 1e-18 of the peak force. A contact joining at an overlap rho misses an
-// impulse K rho^2.5 / (2.5 w) at approach speed w: at 1e-6 of the overlap (this floor before
-// issue 24) a chain's late, slow recontacts moved its beads by 5e-11 of the strike's speed,
-// which the tightest tolerances resolve (tests/packings/test_packing_reduction.cpp).
-constexpr double kOverlapResolution = 1e-12;
-
-// The impact's overlap, or the static one of a precompressed scene struck by nothing.
-double overlap_scale(const ContactModel& model) {
-  const double overlap = impact_overlap(model);
-  return std::isfinite(overlap) ? overlap : std::max(model.largest_static_overlap, 1e-6);
 }
 
 }  // namespace
@@ -211,129 +132,90 @@ ImpactOutcome simulate_impact_numerics(const ContactModel& model,
 
 namespace {
 
-// The compliant integration's error control, whichever geometry: the relative tolerance, the
-// positions' absolute one (m) and the overlap a contact joins at (m).
-struct CompliantTolerances {
-  double relative, absolute, resolution;
+// What a compliant run samples, until when, and the memory its samples may take.
+struct Sampling {
+  const RecordSpec& record;
+  int frame_every;
+  double end;  // s
+  RecordingBudget budget;
 };
 
-CompliantTolerances compliant_tolerances(const ContactModel& model, const CompliantSpec& spec) {
-  const double tolerance = spec.tolerance;  // within [1e-14, 1e-4] (CompliantSpec)
-  // A contact approaching at tolerance x V holds tolerance^(2 / (1 + eta)) of the impact's
-  // overlap: overlaps up to ten times that are the integration's own error (its velocities
-  // carry tolerance x V), not worth integrating.
-  const double overlap = overlap_scale(model);
-  const double resolution =
-      std::max(kOverlapResolution,
-               10.0 * std::pow(tolerance, 2.0 / (1.0 + model.laws.front().exponent))) *
-      overlap;
-  // the positions to the tolerance's share of the impact's overlap
-  return {tolerance, 1e-2 * tolerance * overlap, resolution};
+// The one recorder loop of a compliant run, whichever engine: a sample of the recorded contacts
+// and bodies every record.interval from t = 0 (and where the engine stopped), every
+// frame_every-th sample a frame of the whole scene, until `end` or the contacts are done. Times
+// on the run's clock.
+void record(CompliantEngine& engine, const ContactModel& model, Sampling sampling,
+            CompliantRun& run) {
+  const RecordSpec& record = sampling.record;
+  const int frame_every = sampling.frame_every;
+  const double end = sampling.end;
+  const int d = model.dimension;
+  for (std::int64_t k = 0;; ++k) {
+    const double t = std::min(end, double(k) * record.interval);
+    engine.advance_to(t);
+    run.series.time.push_back(engine.time());
+    std::vector<double> forces, velocities;
+    for (int c : record.contacts) forces.push_back(engine.force(c));
+    for (int b : record.bodies)
+      for (int i = 0; i < d; ++i) velocities.push_back(engine.velocity(b)(i));
+    run.series.force.push_back(std::move(forces));
+    run.series.velocity.push_back(std::move(velocities));
+    const bool frame = frame_every > 0 && k % frame_every == 0;
+    sampling.budget.add(frame);
+    if (frame) {
+      run.frames.time.push_back(engine.time());
+      std::vector<double> all_forces, all_velocities, all_positions;
+      for (Eigen::Index c = 0; c < model.contact_count(); ++c)
+        all_forces.push_back(engine.force(c));
+      for (Eigen::Index b = 0; b < model.body_count(); ++b)
+        for (int i = 0; i < d; ++i) {
+          all_velocities.push_back(engine.velocity(b)(i));
+          if (engine.has_positions()) all_positions.push_back(engine.position(b)(i));
+        }
+      run.frames.force.push_back(std::move(all_forces));
+      run.frames.velocity.push_back(std::move(all_velocities));
+      if (engine.has_positions()) run.frames.position.push_back(std::move(all_positions));
+    }
+    if (t >= end || engine.ended()) break;
+  }
 }
 
-// The compliant contacts where the bodies are (MovingContacts), sampled every record.interval.
-CompliantRun simulate_moving(const ContactModel& model, const CompliantSpec& spec,
-                             const RecordSpec& record, int frame_every, const RunLimits& limits) {
-  const CompliantTolerances tolerances = compliant_tolerances(model, spec);
-  MovingContactsOptions options;
-  options.ode.relative_tolerance = tolerances.relative;
-  // The Nystrom pair's steps are set by the contacts' impulses since their group's last restart,
-  // small numbers held to the absolute tolerance: a tenth of the tolerance's share of the
-  // impact's overlap rather than a hundredth takes 8 to 29 % fewer body steps at equal accuracy
-  // (docs/design/moving_geometry.md).
-  options.ode.absolute_tolerance = 10.0 * tolerances.absolute;
-  options.ode.event_tolerance = 1e-13;
-  // A contact left out below an overlap r for a window (a quarter of a contact's duration)
-  // changes the velocities by about (r / overlap)^eta V / 4: the moving geometry resolves
-  // overlaps down to (1e-2 tolerance)^(1 / eta) of the impact's, so that this stays under the
-  // error the tolerance allows (at 1e-4: RMS 4.4e-5 on 32 x 32, from 3.5e-4 with the frozen
-  // integrator's resolution, for the same time).
-  options.overlap_resolution =
-      std::max(kOverlapResolution,
-               std::pow(1e-2 * tolerances.relative, 1.0 / model.laws.front().exponent)) *
-      overlap_scale(model);
-  options.max_steps = spec.max_steps;
-  const int d = model.dimension;
-  std::vector<Eigen::Vector3d> velocity(std::size_t(model.body_count()), Eigen::Vector3d::Zero());
-  for (Eigen::Index b = 0; b < model.body_count(); ++b)
-    velocity[std::size_t(b)].head(d) = model.velocity.segment(d * b, d);
-  const auto clock = std::chrono::steady_clock::now();
-  MovingContacts motion(*model.beads, velocity, model.beads->closed, options);
-  const double end = spec.end_time.value_or(1.0);
-  const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
-  CompliantRun run;
-  run.series.contacts = record.contacts;
-  run.series.bodies = record.bodies;
-  run.series.dimension = d;
-  const double impact_time =
-      *std::min_element(model.striker_arrivals.begin(), model.striker_arrivals.end());
-  if (recording) {
-    RecordingBudget budget = compliant_budget(model, record, frame_every, limits);
-    const double samples = (impact_time + impact_duration_bound(model)) / record.interval;
-    budget.check_estimate(samples, frame_every > 0 ? samples / double(frame_every) : 0.0);
-    for (std::int64_t k = 0;; ++k) {
-      const double t = std::min(end, double(k) * record.interval);
-      motion.advance(t);
-      run.series.time.push_back(motion.time() - impact_time);
-      std::vector<double> forces, velocities;
-      for (int c : record.contacts) forces.push_back(motion.contacts()[std::size_t(c)].force);
-      for (int b : record.bodies)
-        for (int i = 0; i < d; ++i) velocities.push_back(motion.velocity(b)(i));
-      run.series.force.push_back(std::move(forces));
-      run.series.velocity.push_back(std::move(velocities));
-      const bool frame = frame_every > 0 && k % frame_every == 0;
-      budget.add(frame);
-      if (frame) {
-        run.frames.time.push_back(motion.time() - impact_time);
-        std::vector<double> all_forces, all_velocities, all_positions;
-        for (Eigen::Index c = 0; c < model.contact_count(); ++c)
-          all_forces.push_back(motion.contacts()[std::size_t(c)].force);
-        for (Eigen::Index b = 0; b < model.body_count(); ++b)
-          for (int i = 0; i < d; ++i) {
-            all_velocities.push_back(motion.velocity(b)(i));
-            all_positions.push_back(motion.position(b)(i));
-          }
-        run.frames.force.push_back(std::move(all_forces));
-        run.frames.velocity.push_back(std::move(all_velocities));
-        run.frames.position.push_back(std::move(all_positions));
-      }
-      if (t >= end || motion.ended()) break;
-    }
-  } else {
-    motion.advance(end);
-  }
+// The one assembly of a compliant run's outcome from its engine, once the run is over: the
+// contacts' records, the impact's span (the times of the series, frames and peaks from its
+// start), the bodies' velocities and the counts.
+void assemble(const CompliantEngine& engine, const ContactModel& model, CompliantRun& run) {
   ImpactOutcome& impact = run.impact;
-  impact.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
-  impact.impact_time = impact_time;
-  const Eigen::Index m = model.contact_count();
   numerics::ImpactResult& result = impact.result;
-  result.impulse.resize(m);
-  result.max_force.resize(m);
-  result.time_of_max_force.resize(m);
-  result.work.resize(m);
-  result.stored_energy.resize(m);
+  const ImpactSpan span = engine.impact_span();
+  impact.impact_time = span.start;
+  const Eigen::Index m = model.contact_count();
+  for (Eigen::VectorXd* v : {&result.impulse, &result.max_force, &result.time_of_max_force,
+                             &result.work, &result.stored_energy, &impact.stored_energy_at_start})
+    v->resize(m);
   for (Eigen::Index c = 0; c < m; ++c) {
-    const MovingContact& contact = motion.contacts()[std::size_t(c)];
-    result.impulse(c) = contact.impulse;
-    result.max_force(c) = contact.max_force;
-    result.time_of_max_force(c) = contact.time_of_max_force - impact_time;
-    result.work(c) = contact.work();
-    result.stored_energy(c) = contact.stored_energy;
+    const ContactTotals totals = engine.totals(c);
+    result.impulse(c) = totals.impulse;
+    result.max_force(c) = totals.max_force;
+    result.time_of_max_force(c) = totals.time_of_max_force - span.start;
+    result.work(c) = totals.work;
+    result.stored_energy(c) = totals.stored_energy;
+    impact.stored_energy_at_start(c) = totals.stored_energy_at_start;
   }
-  result.steps = motion.stats().steps;
-  result.duration = motion.time() - impact_time;
-  impact.stored_energy_at_start = Eigen::VectorXd::Zero(m);
-  impact.cut_by_end_time = !motion.ended();
+  result.steps = engine.steps();
+  result.duration = span.end - span.start;
+  impact.work_of_forces = engine.work_of_forces();
+  impact.cut_by_end_time = span.cut_by_end_time;
+  const int d = model.dimension;
   impact.velocity_after.resize(model.mass.size());
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
-    impact.velocity_after.segment(b * d, d) = motion.velocity(b).head(d);
+    impact.velocity_after.segment(b * d, d) = engine.velocity(b).head(d);
   result.velocity = model.W.transpose() * impact.velocity_after;
-  impact.impact_times = {impact_time};
+  impact.impact_times = {span.start};
   impact.velocities_before = {model.velocity};
-  run.most_bodies_in_motion = motion.stats().most_bodies_in_motion;
-  run.moving = motion.stats();
-  return run;
+  run.most_bodies_in_motion = engine.most_bodies_in_motion();
+  run.moving = engine.moving_stats();
+  for (double& t : run.series.time) t -= span.start;
+  for (double& t : run.frames.time) t -= span.start;
 }
 
 }  // namespace
@@ -342,20 +224,6 @@ CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                 const CompliantSpec& spec, const RecordSpec& record,
                                 int frame_every, const RunLimits& limits) {
-  if (spec.geometry == Geometry::moving && model.beads)
-    return simulate_moving(model, spec, record, frame_every, limits);
-  const auto [tolerance, absolute_tolerance, resolution] = compliant_tolerances(model, spec);
-  plugins::CompliantOptions options;
-  options.ode.relative_tolerance = tolerance;
-  options.ode.absolute_tolerance = absolute_tolerance;
-  options.overlap_resolution = resolution;
-  options.frozen_gaps = spec.gaps == Gaps::frozen;
-  options.max_steps = spec.max_steps;
-  auto integrator = std::make_unique<plugins::CompliantIntegrator>(options);
-  const plugins::CompliantIntegrator& compliant = *integrator;
-  kernel::SimulationOptions simulation_options;
-  simulation_options.penetration_tolerance += model.largest_static_overlap;  // precompressed
-  kernel::Simulation simulation(system, std::move(integrator), {}, simulation_options);
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
   RecordingBudget budget = compliant_budget(model, record, frame_every, limits);
@@ -366,49 +234,22 @@ CompliantRun simulate_compliant(const ContactModel& model,
          impact_duration_bound(model)) /
         record.interval;
     budget.check_estimate(samples, frame_every > 0 ? samples / double(frame_every) : 0.0);
-    simulation.schedule_outputs(0.0, record.interval, end);
   }
-  const bool precompressed = model.precompression > 0.0;
-  CompliantWatch watch(record, model.dimension, frame_every, precompressed,
-                       std::find(model.striker_arrivals.begin(), model.striker_arrivals.end(),
-                                 0.0) != model.striker_arrivals.end(),
-                       std::move(budget));
-  simulation.add_observer(watch);
   const auto clock = std::chrono::steady_clock::now();
-  const kernel::RunSummary summary = simulation.run(0.0, end);
-  const kernel::ContactForceHistory& history = *simulation.integrator().contact_force_history();
-
+  const std::unique_ptr<CompliantEngine> engine =
+      make_compliant_engine(model, std::move(system), spec);
   CompliantRun run;
-  ImpactOutcome& impact = run.impact;
-  impact.wall_time =
+  run.series.contacts = record.contacts;
+  run.series.bodies = record.bodies;
+  run.series.dimension = model.dimension;
+  if (recording)
+    granular::record(*engine, model, {record, frame_every, end, std::move(budget)}, run);
+  else
+    engine->advance_to(end);
+  engine->finish();
+  run.impact.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
-  // touching strikers start in contact: no closing event, the impact begins at 0
-  impact.impact_time = std::max(0.0, watch.first_contact());
-  impact.result.impulse = history.impulse;
-  impact.result.max_force = history.max_force;
-  impact.result.time_of_max_force = history.time_of_max_force.array() - impact.impact_time;
-  impact.result.steps = summary.smooth_steps;
-  impact.result.work = history.work;
-  impact.result.stored_energy = history.stored_energy;
-  impact.stored_energy_at_start = history.stored_energy_at_start;
-  impact.work_of_forces = history.work_of_forces;
-  impact.cut_by_end_time = !precompressed && !history.all_open;
-  // a free scene's impact lasts until its last contact opens; a precompressed one's, the run
-  impact.result.duration =
-      (precompressed || watch.last_opening() < 0.0 ? summary.end_time : watch.last_opening()) -
-      impact.impact_time;
-  impact.velocity_after.resize(model.mass.size());
-  for (Eigen::Index b = 0; b < model.body_count(); ++b)
-    impact.velocity_after.segment(b * model.dimension, model.dimension) =
-        system->system(b).velocity();
-  impact.result.velocity = model.W.transpose() * impact.velocity_after;
-  impact.impact_times = {impact.impact_time};
-  impact.velocities_before = {model.velocity};
-  run.series = watch.take_series();
-  run.frames = watch.take_frames();
-  run.most_bodies_in_motion = compliant.most_bodies_in_motion();
-  for (double& t : run.series.time) t -= impact.impact_time;
-  for (double& t : run.frames.time) t -= impact.impact_time;
+  assemble(*engine, model, run);
   return run;
 }
 

@@ -78,54 +78,98 @@ void Simulation::schedule_outputs(double start, double interval, double end) {
     outputs_.push(start + double(k) * interval);
 }
 
+namespace {
+
+// Clears `flag` when the call that set it returns or throws.
+struct Lowered {
+  std::atomic<bool>& flag;
+  ~Lowered() { flag = false; }
+};
+
+void refuse_reentry(std::atomic<bool>& running, const char* what) {
+  if (running.exchange(true))
+    throw Error(std::string("Simulation::") + what +
+                ": the simulation is already running (from another thread, or run again by one "
+                "of its observers); allowed: one run at a time");
+}
+
+}  // namespace
+
+void Simulation::initialize(double start) {
+  check_time(start, "start time");
+  refuse_reentry(running_, "initialize");
+  Lowered lowered{running_};
+  start_at(start);
+}
+
+bool Simulation::advance_to(double end) {
+  check_time(end, "end time");
+  if (!initialized_) throw Error("Simulation::advance_to before initialize");
+  if (!(end >= time_))
+    throw InvalidInput(invalid_value_message("end time", end, ">= the time " + to_text(time_)));
+  refuse_reentry(running_, "advance_to");
+  Lowered lowered{running_};
+  return advance(end);
+}
+
+RunSummary Simulation::finish() {
+  if (!initialized_) throw Error("Simulation::finish before initialize");
+  refuse_reentry(running_, "finish");
+  Lowered lowered{running_};
+  return end_run();
+}
+
 RunSummary Simulation::run(double start, double end) {
   check_time(start, "start time");
   check_time(end, "end time");
   if (!(end >= start))
     throw InvalidInput(
         invalid_value_message("end time", end, ">= the start time " + to_text(start)));
-  if (running_.exchange(true))
-    throw Error(
-        "Simulation::run: the simulation is already running (from another thread, or run again "
-        "by one of its observers); allowed: one run at a time");
-  struct Ended {
-    std::atomic<bool>& running;
-    ~Ended() { running = false; }
-  } ended{running_};
+  refuse_reentry(running_, "run");
+  Lowered lowered{running_};
+  start_at(start);
+  advance(end);
+  return end_run();
+}
+
+void Simulation::start_at(double start) {
   if (problems_.impacts)
     for (Index j = 0; j < system_->interaction_count(); ++j)
       problems_.impacts->check_law(system_->interaction(j).law(), system_->interaction(j).name());
   system_->check(options_.penetration_tolerance);
 
-  const auto clock_start = std::chrono::steady_clock::now();
-  RunSummary summary;
-  summary.start_time = start;
+  clock_start_ = std::chrono::steady_clock::now();
+  summary_ = {};
+  summary_.start_time = start;
+  termination_.reset();
   time_ = start;
   integrator_->initialize(*system_, start,
                           {problems_.impacts.get(), problems_.contact_forces.get()});
+  initialized_ = true;
   tell([&](SimulationObserver& o) { o.on_start(*this); });
   // outputs before the start are past; those at the start need no advance
   while (!outputs_.empty() && outputs_.top() <= start) {
     if (outputs_.top() == start) tell([&](SimulationObserver& o) { o.on_output(*this); });
     outputs_.pop();
   }
+}
 
-  std::optional<EventStatus> termination;
-  while (time_ < end && !termination) {
+bool Simulation::advance(double end) {
+  while (time_ < end && !termination_) {
     const double target = outputs_.empty() ? end : std::min(end, outputs_.top());
     const StepReport step = integrator_->advance(target);
     time_ = step.time;
-    ++summary.advances;
-    summary.smooth_steps += step.smooth_steps;
+    ++summary_.advances;
+    summary_.smooth_steps += step.smooth_steps;
     tell([&](SimulationObserver& o) {
       EventStatus status = o.on_step(*this, step);
-      if (status.terminates() && !termination) termination = std::move(status);
+      if (status.terminates() && !termination_) termination_ = std::move(status);
     });
     if (step.event) {
-      ++summary.events;
+      ++summary_.events;
       tell([&](SimulationObserver& o) { o.on_event(*this, step); });
       if (step.impact) {
-        ++summary.impacts;
+        ++summary_.impacts;
         tell([&](SimulationObserver& o) { o.on_impact(*this, *step.impact); });
       }
     }
@@ -134,15 +178,20 @@ RunSummary Simulation::run(double start, double end) {
       tell([&](SimulationObserver& o) { o.on_output(*this); });
     }
   }
-  if (termination) {
-    summary.status = RunStatus::terminated;
-    summary.reason = termination->reason();
+  return !termination_;
+}
+
+RunSummary Simulation::end_run() {
+  initialized_ = false;
+  if (termination_) {
+    summary_.status = RunStatus::terminated;
+    summary_.reason = termination_->reason();
   }
-  summary.end_time = time_;
-  summary.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  summary_.end_time = time_;
+  summary_.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start_).count();
   tell([&](SimulationObserver& o) { o.on_end(*this); });
-  return summary;
+  return summary_;
 }
 
 }  // namespace mimpact::kernel

@@ -197,6 +197,53 @@ TEST(SimulationLoop, TerminateEndsTheRunAfterTheCurrentAdvance) {
   EXPECT_EQ(summary.impacts, 2);
 }
 
+// Advancing to times of the caller's own (Drake's AdvanceTo) is the run with outputs at those
+// times: the same states there, the same events, and an observer's termination stops it.
+TEST(SimulationLoop, AdvanceToTheOutputTimesIsTheRunWithOutputs) {
+  auto make = [] {
+    return Simulation(one_body(std::make_shared<TestLaw>()), std::make_unique<PeriodicImpacts>(0.3),
+                      {.impacts = std::make_unique<ReversingImpacts>(),
+                       .contact_forces = std::make_unique<NoForces>()});
+  };
+  Simulation with_outputs = make();
+  with_outputs.schedule_outputs(0.0, 0.25, 1.0);
+  Recorder outputs;
+  with_outputs.add_observer(outputs);
+  const RunSummary whole = with_outputs.run(0.0, 1.0);
+
+  Simulation stepped = make();
+  Recorder events;
+  stepped.add_observer(events);
+  EXPECT_THROW(stepped.advance_to(0.5), Error);  // before initialize
+  stepped.initialize(0.0);
+  std::vector<double> times, positions;
+  for (double t : {0.25, 0.5, 0.75, 1.0}) {
+    EXPECT_TRUE(stepped.advance_to(t));
+    times.push_back(stepped.time());
+    positions.push_back(stepped.system().system(0).position()(0));
+  }
+  EXPECT_THROW(stepped.advance_to(0.5), InvalidInput);  // behind time()
+  const RunSummary summary = stepped.finish();
+  EXPECT_EQ(times, std::vector<double>(outputs.outputs.begin() + 1, outputs.outputs.end()));
+  EXPECT_EQ(positions, std::vector<double>(outputs.positions.begin() + 1, outputs.positions.end()));
+  EXPECT_EQ(events.impacts, outputs.impacts);
+  EXPECT_EQ(summary.advances, whole.advances);
+  EXPECT_EQ(summary.end_time, whole.end_time);
+  EXPECT_EQ(events.starts, 1);
+  EXPECT_EQ(events.ends, 1);
+  EXPECT_THROW(stepped.finish(), Error);  // after finish
+
+  Simulation stopped = make();
+  Recorder two;
+  two.stop_after_impacts = 2;
+  stopped.add_observer(two);
+  stopped.initialize(0.0);
+  EXPECT_TRUE(stopped.advance_to(0.5));
+  EXPECT_FALSE(stopped.advance_to(10.0));
+  EXPECT_NEAR(stopped.time(), 0.6, 1e-15);
+  EXPECT_EQ(stopped.finish().status, RunStatus::terminated);
+}
+
 TEST(SimulationLoop, ALawTheImpactProblemCannotHandleIsRefusedBeforeTheRun) {
   Simulation simulation(one_body(std::make_shared<OtherLaw>()),
                         std::make_unique<PeriodicImpacts>(0.3),

@@ -257,3 +257,39 @@ TEST(PackingConservation, SymmetricStrikeInSpaceGivesAMirrorResult) {
 
 }  // namespace
 }  // namespace mimpact::testing
+
+namespace mimpact::testing {
+namespace {
+
+// The one recorder loop of the compliant engines (granular/src/compliant_engine.hpp): in the
+// frozen geometry (the kernel's integrator) and the moving one alike, the series is sampled
+// every interval from t = 0 and ends where the run stopped, the recorded bodies' last row their
+// velocities of the outcome, to the bit; and both keep the momentum of the strike.
+TEST(CompliantEngines, BothRecordEveryIntervalToWhereTheRunStopped) {
+  const double interval = 2e-6;  // s
+  for (const std::string geometry : {"frozen", "moving"}) {
+    const PackingCase packing = run_packing(lattice_scene(
+        "hexagonal", 3, 4, "[0, 1]", "[0.0, 1.0]",
+        R"("method": "compliant", "compliant": {"tolerance": 1e-8, "geometry": ")" + geometry +
+            R"("}, "record": {"contacts": [0], "beads": [0, 5], "interval": )" +
+            std::to_string(interval) + "}"));
+    const granular::TimeSeries& series = packing.run.series;
+    ASSERT_GE(series.time.size(), 3u) << geometry;
+    const double start = packing.run.impact.impact_time;
+    for (std::size_t k = 0; k + 1 < series.time.size(); ++k)
+      EXPECT_EQ(series.time[k], double(k) * interval - start) << geometry << " sample " << k;
+    EXPECT_GT(series.time.back(), series.time[series.time.size() - 2]) << geometry;
+    EXPECT_LE(series.time.back() - series.time[series.time.size() - 2], interval) << geometry;
+    const Eigen::VectorXd& after = packing.run.impact.velocity_after;
+    const std::vector<double>& last = series.velocity.back();
+    ASSERT_EQ(last.size(), 4u);
+    EXPECT_EQ(last[0], after(0)) << geometry;
+    EXPECT_EQ(last[1], after(1)) << geometry;
+    EXPECT_EQ(last[2], after(10)) << geometry;
+    EXPECT_EQ(last[3], after(11)) << geometry;
+    EXPECT_LT(relative_momentum_change(packing), 1e-12) << geometry;
+  }
+}
+
+}  // namespace
+}  // namespace mimpact::testing

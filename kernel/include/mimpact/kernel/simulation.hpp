@@ -1,8 +1,10 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <queue>
 #include <string>
 #include <string_view>
@@ -94,6 +96,14 @@ class Simulation {
   // the problems cannot handle (a law, a mass, an initial interpenetration); mimpact::Error
   // while it is already running: one run at a time, whatever the thread.
   RunSummary run(double start, double end);
+  // run() in three calls, as Drake's Simulator::Initialize and AdvanceTo, for a caller that
+  // reads the state between times of its own: initialize at `start` (the checks of run, then
+  // on_start), advance_to each time in turn (false once an observer has terminated the run;
+  // InvalidInput for a time before time()), then finish (on_end and the summary). Each throws
+  // mimpact::Error out of that order or while another call runs.
+  void initialize(double start);
+  bool advance_to(double end);
+  RunSummary finish();
   bool running() const { return running_.load(); }
 
   double time() const { return time_; }
@@ -101,6 +111,11 @@ class Simulation {
   const OneStepIntegrator& integrator() const { return *integrator_; }
 
  private:
+  // the three stages of a run, with running_ held by the caller
+  void start_at(double start);
+  bool advance(double end);
+  RunSummary end_run();
+
   template <class Call>
   void tell(Call&& call) {
     for (SimulationObserver* observer : observers_) call(*observer);
@@ -113,7 +128,11 @@ class Simulation {
   std::vector<SimulationObserver*> observers_;
   std::priority_queue<double, std::vector<double>, std::greater<double>> outputs_;
   double time_ = 0.0;
-  std::atomic<bool> running_ = false;
+  std::atomic<bool> running_ = false;  // within a call of initialize, advance_to or finish
+  bool initialized_ = false;           // from initialize to finish
+  RunSummary summary_;
+  std::optional<EventStatus> termination_;
+  std::chrono::steady_clock::time_point clock_start_;
 };
 
 }  // namespace mimpact::kernel

@@ -1,0 +1,242 @@
+// The two engines of the compliant contacts behind CompliantEngine, and what the scene's
+// tolerance asks of each.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "compliant_engine.hpp"
+#include "mimpact/granular/moving_contacts.hpp"
+#include "mimpact/kernel/simulation.hpp"
+#include "mimpact/plugins/compliant_integrator.hpp"
+
+namespace mimpact::granular {
+
+namespace {
+
+// Overlaps below this share of the impact's are never integrated (CompliantOptions): their
+// force is below 1e-18 of the peak force. A contact joining at an overlap rho misses an
+// impulse K rho^2.5 / (2.5 w) at approach speed w: at 1e-6 of the overlap (this floor before
+// issue 24) a chain's late, slow recontacts moved its beads by 5e-11 of the strike's speed,
+// which the tightest tolerances resolve (tests/packings/test_packing_reduction.cpp).
+constexpr double kOverlapResolution = 1e-12;
+
+// The impact's overlap, or the static one of a precompressed scene struck by nothing.
+double overlap_scale(const ContactModel& model) {
+  const double overlap = impact_overlap(model);
+  return std::isfinite(overlap) ? overlap : std::max(model.largest_static_overlap, 1e-6);
+}
+
+// The compliant integration's error control, whichever geometry: the relative tolerance, the
+// positions' absolute one (m) and the overlap a contact joins at (m).
+struct CompliantTolerances {
+  double relative, absolute, resolution;
+};
+
+CompliantTolerances compliant_tolerances(const ContactModel& model, const CompliantSpec& spec) {
+  const double tolerance = spec.tolerance;  // within [1e-14, 1e-4] (CompliantSpec)
+  // A contact approaching at tolerance x V holds tolerance^(2 / (1 + eta)) of the impact's
+  // overlap: overlaps up to ten times that are the integration's own error (its velocities
+  // carry tolerance x V), not worth integrating.
+  const double overlap = overlap_scale(model);
+  const double resolution =
+      std::max(kOverlapResolution,
+               10.0 * std::pow(tolerance, 2.0 / (1.0 + model.laws.front().exponent))) *
+      overlap;
+  // the positions to the tolerance's share of the impact's overlap
+  return {tolerance, 1e-2 * tolerance * overlap, resolution};
+}
+
+MovingContactsOptions moving_options(const ContactModel& model, const CompliantSpec& spec) {
+  const CompliantTolerances tolerances = compliant_tolerances(model, spec);
+  MovingContactsOptions options;
+  options.ode.relative_tolerance = tolerances.relative;
+  // The Nystrom pair's steps are set by the contacts' impulses since their group's last restart,
+  // small numbers held to the absolute tolerance: a tenth of the tolerance's share of the
+  // impact's overlap rather than a hundredth takes fewer body steps at equal accuracy
+  // (docs/design/moving_geometry.md).
+  options.ode.absolute_tolerance = 10.0 * tolerances.absolute;
+  options.ode.event_tolerance = 1e-13;
+  // A contact left out below an overlap r for a window (a quarter of a contact's duration)
+  // changes the velocities by about (r / overlap)^eta V / 4: the moving geometry resolves
+  // overlaps down to (1e-2 tolerance)^(1 / eta) of the impact's, so that this stays under the
+  // error the tolerance allows (docs/design/moving_geometry.md).
+  options.overlap_resolution =
+      std::max(kOverlapResolution,
+               std::pow(1e-2 * tolerances.relative, 1.0 / model.laws.front().exponent)) *
+      overlap_scale(model);
+  options.max_steps = spec.max_steps;
+  return options;
+}
+
+// The beads where they are (MovingContacts); the impact starts with the first striker's arrival.
+class MovingEngine : public CompliantEngine {
+ public:
+  MovingEngine(const ContactModel& model, const CompliantSpec& spec)
+      : motion_(*model.beads, velocities(model), model.beads->closed, moving_options(model, spec)),
+        impact_time_(
+            *std::min_element(model.striker_arrivals.begin(), model.striker_arrivals.end())) {}
+
+  void advance_to(double t) override { motion_.advance(t); }
+  double time() const override { return motion_.time(); }
+  bool ended() const override { return motion_.ended(); }
+  double force(Eigen::Index contact) const override {
+    return motion_.contacts()[std::size_t(contact)].force;
+  }
+  ContactTotals totals(Eigen::Index contact) const override {
+    const MovingContact& c = motion_.contacts()[std::size_t(contact)];
+    return {.impulse = c.impulse,
+            .max_force = c.max_force,
+            .time_of_max_force = c.time_of_max_force,
+            .work = c.work(),
+            .stored_energy = c.stored_energy};
+  }
+  Eigen::Vector3d velocity(Eigen::Index body) const override { return motion_.velocity(body); }
+  bool has_positions() const override { return true; }
+  Eigen::Vector3d position(Eigen::Index body) const override { return motion_.position(body); }
+  ImpactSpan impact_span() const override {
+    return {.start = impact_time_, .end = motion_.time(), .cut_by_end_time = !motion_.ended()};
+  }
+  std::int64_t steps() const override { return motion_.stats().steps; }
+  double work_of_forces() const override { return 0.0; }
+  Eigen::Index most_bodies_in_motion() const override {
+    return motion_.stats().most_bodies_in_motion;
+  }
+  MovingContactsStats moving_stats() const override { return motion_.stats(); }
+
+ private:
+  static std::vector<Eigen::Vector3d> velocities(const ContactModel& model) {
+    const int d = model.dimension;
+    std::vector<Eigen::Vector3d> velocity(std::size_t(model.body_count()), Eigen::Vector3d::Zero());
+    for (Eigen::Index b = 0; b < model.body_count(); ++b)
+      velocity[std::size_t(b)].head(d) = model.velocity.segment(d * b, d);
+    return velocity;
+  }
+
+  MovingContacts motion_;
+  double impact_time_;  // s
+};
+
+// When the impact starts and its last contact opens; ends a free scene once it has come apart.
+class ContactWatch : public kernel::SimulationObserver {
+ public:
+  ContactWatch(bool precompressed, bool touching_at_start) : precompressed_(precompressed) {
+    // a striker with no gap touches at t = 0: the impact starts at once, with no closing event
+    if (touching_at_start) first_contact_ = 0.0;
+  }
+
+  kernel::EventStatus on_step(const kernel::Simulation& s,
+                              const kernel::StepReport& step) override {
+    if (!step.closing.empty() && first_contact_ < 0.0) first_contact_ = step.time;
+    if (!step.detaching.empty()) last_opening_ = step.time;
+    if (!precompressed_ && first_contact_ >= 0.0 &&
+        s.integrator().contact_force_history()->all_open) {
+      ended_ = true;
+      return kernel::EventStatus::terminate("the scene has come apart");
+    }
+    return kernel::EventStatus::proceed();
+  }
+
+  bool precompressed() const { return precompressed_; }
+  bool ended() const { return ended_; }
+  double first_contact() const { return first_contact_; }
+  double last_opening() const { return last_opening_; }
+
+ private:
+  bool precompressed_, ended_ = false;
+  double first_contact_ = -1.0, last_opening_ = -1.0;
+};
+
+std::unique_ptr<plugins::CompliantIntegrator> kernel_integrator(const ContactModel& model,
+                                                                const CompliantSpec& spec) {
+  const CompliantTolerances tolerances = compliant_tolerances(model, spec);
+  plugins::CompliantOptions options;
+  options.ode.relative_tolerance = tolerances.relative;
+  options.ode.absolute_tolerance = tolerances.absolute;
+  options.overlap_resolution = tolerances.resolution;
+  options.frozen_gaps = spec.gaps == Gaps::frozen;
+  options.max_steps = spec.max_steps;
+  return std::make_unique<plugins::CompliantIntegrator>(options);
+}
+
+kernel::SimulationOptions kernel_options(const ContactModel& model) {
+  kernel::SimulationOptions options;
+  options.penetration_tolerance += model.largest_static_overlap;  // precompressed
+  return options;
+}
+
+// The kernel's CompliantIntegrator over the model's system; the impact starts with the first
+// contact, and a free scene's ends where its last contact opens (a precompressed one's, with the
+// run).
+class KernelEngine : public CompliantEngine {
+ public:
+  KernelEngine(const ContactModel& model, std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+               const CompliantSpec& spec)
+      : integrator_(kernel_integrator(model, spec).release()),
+        simulation_(std::move(system), std::unique_ptr<plugins::CompliantIntegrator>(integrator_),
+                    {}, kernel_options(model)),
+        watch_(model.precompression > 0.0,
+               std::find(model.striker_arrivals.begin(), model.striker_arrivals.end(), 0.0) !=
+                   model.striker_arrivals.end()) {
+    simulation_.add_observer(watch_);
+    simulation_.initialize(0.0);
+  }
+
+  void advance_to(double t) override { simulation_.advance_to(t); }
+  void finish() override { summary_ = simulation_.finish(); }
+  double time() const override { return simulation_.time(); }
+  bool ended() const override { return watch_.ended(); }
+  double force(Eigen::Index contact) const override { return history().force(contact); }
+  ContactTotals totals(Eigen::Index contact) const override {
+    const kernel::ContactForceHistory& h = history();
+    return {.impulse = h.impulse(contact),
+            .max_force = h.max_force(contact),
+            .time_of_max_force = h.time_of_max_force(contact),
+            .work = h.work(contact),
+            .stored_energy = h.stored_energy(contact),
+            .stored_energy_at_start = h.stored_energy_at_start(contact)};
+  }
+  Eigen::Vector3d velocity(Eigen::Index body) const override {
+    const Eigen::VectorXd& v = simulation_.system().system(body).velocity();
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    velocity.head(v.size()) = v;
+    return velocity;
+  }
+  bool has_positions() const override { return false; }
+  Eigen::Vector3d position(Eigen::Index) const override { return Eigen::Vector3d::Zero(); }
+  ImpactSpan impact_span() const override {
+    const double start = std::max(0.0, watch_.first_contact());
+    const double end = watch_.precompressed() || watch_.last_opening() < 0.0
+                           ? summary_.end_time
+                           : watch_.last_opening();
+    return {.start = start,
+            .end = end,
+            .cut_by_end_time = !watch_.precompressed() && !history().all_open};
+  }
+  std::int64_t steps() const override { return summary_.smooth_steps; }
+  double work_of_forces() const override { return history().work_of_forces; }
+  Eigen::Index most_bodies_in_motion() const override {
+    return integrator_->most_bodies_in_motion();
+  }
+
+ private:
+  const kernel::ContactForceHistory& history() const {
+    return *simulation_.integrator().contact_force_history();
+  }
+
+  plugins::CompliantIntegrator* integrator_;  // owned by simulation_
+  kernel::Simulation simulation_;
+  ContactWatch watch_;
+  kernel::RunSummary summary_;
+};
+
+}  // namespace
+
+std::unique_ptr<CompliantEngine> make_compliant_engine(
+    const ContactModel& model, std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+    const CompliantSpec& spec) {
+  if (spec.geometry == Geometry::moving && model.beads)
+    return std::make_unique<MovingEngine>(model, spec);
+  return std::make_unique<KernelEngine>(model, std::move(system), spec);
+}
+
+}  // namespace mimpact::granular
