@@ -1,16 +1,10 @@
 #include "mimpact/packings/packing_model.hpp"
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
-#include <fstream>
-#include <numeric>
-#include <optional>
-#include <sstream>
-#include <tuple>
 
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/cell_grid.hpp"
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/kernel/json_document.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
@@ -23,19 +17,11 @@ namespace mimpact::packings {
 
 namespace {
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-// three dimensions whatever the packing's (a planar packing's third coordinate is 0)
-using Point = bg::model::point<double, 3, bg::cs::cartesian>;
-using Box = bg::model::box<Point>;
-using Entry = std::pair<Point, Eigen::Index>;
-using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
-
-// the R-tree's point of `centre`, shifted by `by` along every axis
-Point point_of(const Vector& centre, double by = 0.0) {
+// a centre in three dimensions whatever the packing's (a planar packing's third coordinate is 0)
+Eigen::Vector3d point_of(const Vector& centre) {
   Eigen::Vector3d at = Eigen::Vector3d::Zero();
   at.head(centre.size()) = centre;
-  return Point(at(0) + by, at(1) + by, at(2) + by);
+  return at;
 }
 
 std::string bead_name(const PackingModel& model, Eigen::Index body) {
@@ -49,19 +35,22 @@ std::string bead_name(const PackingModel& model, Eigen::Index body) {
          std::to_string(body % model.columns) + ")";
 }
 
-Tree index_of(const std::vector<Body>& bodies) {
-  std::vector<Entry> entries;
-  entries.reserve(bodies.size());
+// The beads by their centres, in cells as wide as two of the largest touch.
+granular::CellGrid index_of(const std::vector<Body>& bodies, double largest_radius, int dimension) {
+  granular::CellGrid grid(2.0 * largest_radius * (1.0 + kTouching), dimension);
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    entries.emplace_back(point_of(bodies[i].centre), Eigen::Index(i));
-  return Tree(entries.begin(), entries.end());  // packed (bulk) loading
+    grid.insert(std::int32_t(i), point_of(bodies[i].centre));
+  return grid;
 }
 
-// Calls visit(j) for every body of `tree` whose centre lies within `reach` of `centre`.
+// Calls visit(j) for every body j of `grid` whose centre may lie within `reach` of `centre`, by
+// increasing j.
 template <class Visit>
-void near(const Tree& tree, const Vector& centre, double reach, Visit&& visit) {
-  const Box box(point_of(centre, -reach), point_of(centre, reach));
-  for (auto it = tree.qbegin(bgi::intersects(box)); it != tree.qend(); ++it) visit(it->second);
+void near(const granular::CellGrid& grid, const Vector& centre, double reach, Visit&& visit) {
+  std::vector<Eigen::Index> found;
+  grid.visit_near(point_of(centre), reach, [&](std::int32_t j) { found.push_back(j); });
+  std::sort(found.begin(), found.end());
+  for (Eigen::Index j : found) visit(j);
 }
 
 class PackingBuilder {
@@ -91,7 +80,7 @@ class PackingBuilder {
       model_.columns = scene_.lattice->columns;
     }
     for (const Body& body : bodies_) largest_radius_ = std::max(largest_radius_, body.radius);
-    const Tree beads = index_of(bodies_);
+    const granular::CellGrid beads = index_of(bodies_, largest_radius_, model_.dimension);
     find_bead_contacts(beads);
     place_walls();
     place_strikers(beads);
@@ -129,7 +118,8 @@ class PackingBuilder {
                 granular::hertz_stiffness(a.radius, a.material, b.radius, b.material));
   }
 
-  void find_bead_contacts(const Tree& beads) {
+  // contacts by their first, then second bead
+  void find_bead_contacts(const granular::CellGrid& beads) {
     for (Eigen::Index i = 0; i < model_.bead_count; ++i) {
       const Body& bead = bodies_[std::size_t(i)];
       near(beads, bead.centre, (bead.radius + largest_radius_) * (1.0 + kTouching),
@@ -137,21 +127,6 @@ class PackingBuilder {
              if (j > i) touch(i, j, bead.centre);
            });
     }
-    // the tree hands the neighbours in its own order: contacts by their first, then second bead
-    std::vector<std::size_t> order(model_.contacts.size());
-    std::iota(order.begin(), order.end(), std::size_t(0));
-    std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) {
-      const PackingContact &a = model_.contacts[p], &b = model_.contacts[q];
-      return std::tie(a.first, a.second) < std::tie(b.first, b.second);
-    });
-    std::vector<PackingContact> contacts;
-    std::vector<numerics::ContactLaw> laws;
-    for (std::size_t k : order) {
-      contacts.push_back(model_.contacts[k]);
-      laws.push_back(model_.laws[k]);
-    }
-    model_.contacts = std::move(contacts);
-    model_.laws = std::move(laws);
   }
 
   // the line of a wall given by its side: touching the outermost beads
@@ -197,7 +172,7 @@ class PackingBuilder {
 
   // A striker touches its target at arrival, placed back along its velocity by its gap; it
   // touches any other bead it reaches there, and may overlap none.
-  void place_strikers(const Tree& beads) {
+  void place_strikers(const granular::CellGrid& beads) {
     for (std::size_t s = 0; s < scene_.strikers.size(); ++s) {
       const StrikerSpec& spec = scene_.strikers[s];
       const std::string name = "strikers[" + std::to_string(s) + "]";

@@ -1,12 +1,11 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "mimpact/granular/bead_geometry.hpp"
+#include "mimpact/granular/cell_grid.hpp"
 
 namespace mimpact::granular {
 
@@ -14,9 +13,8 @@ namespace mimpact::granular {
 // last made) and the bodies and walls within `skin` of it there. While every body stays within
 // skin / 2 of its anchor, two bodies that are in no list of each other cannot touch; a body
 // that may leave that ball refreshes its own list alone (the others keep theirs), through a
-// uniform grid of cells as wide as the widest reach, hashed so that beads flying off the
-// packing cost nothing. The work of a refresh is the neighbours of one body, so the search
-// costs what moves: a body at rest never refreshes.
+// CellGrid of cells as wide as the widest reach. The work of a refresh is the neighbours of one
+// body, so the search costs what moves: a body at rest never refreshes.
 class NeighbourLists {
  public:
   NeighbourLists(const BeadGeometry& geometry, double skin);
@@ -35,22 +33,13 @@ class NeighbourLists {
   std::int64_t refreshes() const { return refreshes_; }
 
  private:
-  using Cell = std::array<std::int64_t, 3>;
-  struct CellHash {
-    std::size_t operator()(const Cell& c) const {
-      return std::size_t(c[0] * 73856093) ^ std::size_t(c[1] * 19349663) ^
-             std::size_t(c[2] * 83492791);
-    }
-  };
-  Cell cell_of(const Eigen::Vector3d& x) const;
   void unlink(Eigen::Index b);
   void link(Eigen::Index b, bool mutual);
 
   const BeadGeometry& geometry_;
   double skin_, cell_width_;
   std::vector<Eigen::Vector3d> anchor_;
-  std::vector<Cell> cell_;
-  std::unordered_map<Cell, std::vector<std::int32_t>, CellHash> grid_;
+  CellGrid grid_;  // of the anchors
   std::vector<std::vector<std::int32_t>> near_, walls_;
   std::int64_t refreshes_ = 0;
 };
