@@ -29,20 +29,21 @@ void MovingGroup::add_member(std::int32_t body) {
   b.owner = id_;
   b.slot = std::int32_t(members_.size());
   members_.push_back(body);
-  position_.push_back(b.position_at(time_));
-  shift_.push_back(b.shift_at(time_));
-  velocity_.push_back(b.v);
+  state_.position.push_back(b.position_at(time_));
+  state_.shift.push_back(b.shift_at(time_));
+  state_.velocity.push_back(b.v);
 }
 
 void MovingGroup::recall(Contact& c) const {
   const MovingContact* record =
       c.world_id >= 0 ? &world_.contacts[std::size_t(c.world_id)] : nullptr;
   c.loaded = record && record->joined;
-  c.max_compression = record ? record->max_compression : 0.0;
-  c.impulse = record ? record->impulse : 0.0;
-  c.max_force = record ? record->max_force : 0.0;
-  c.time_of_max_force = record ? record->time_of_max_force : 0.0;
-  c.dissipated = record ? record->dissipated : 0.0;
+  if (record) {
+    static_cast<ContactState&>(c) = *record;
+  } else {
+    const numerics::ContactLaw law = c.law;
+    static_cast<ContactState&>(c) = {.law = law};
+  }
 }
 
 void MovingGroup::add_contact(std::int32_t first_body, std::int32_t second_body) {
@@ -96,9 +97,9 @@ void MovingGroup::carry_on(std::int32_t id, double start,
   }
   id_ = id;
   start_ = time_ = start;
-  position_.clear();
-  shift_.clear();
-  velocity_.clear();
+  state_.position.clear();
+  state_.shift.clear();
+  state_.velocity.clear();
   // its former members first, already paired among themselves; then the new ones
   for (std::int32_t body : members)
     if (world_.bodies[std::size_t(body)].owner == kFormerMember) add_member(body);
@@ -140,22 +141,22 @@ void MovingGroup::restart(double t) {
   time_ = t;
   const int d = dimension_;
   const std::size_t n = members_.size();
-  origin_ = shift_;
+  state_.origin = state_.shift;
   pair_new_members();
-  watched_.clear();
+  search_.watched.clear();
   for (std::size_t m = 0; m < n; ++m)
     for (std::int32_t other : world_.lists.bodies_near(members_[m]))
       if (world_.bodies[std::size_t(other)].owner < 0)  // another group's: checked at the end
-        watched_.push_back({std::int32_t(m), other});
-  active_.clear();
-  springs_.clear();
-  springs_aside_.clear();
-  spring_reach_.clear();
-  spring_stiffness_.clear();
-  gain_.resize(n);
+        search_.watched.push_back({std::int32_t(m), other});
+  springs_.active.clear();
+  springs_.list.clear();
+  springs_.aside.clear();
+  springs_.reach.clear();
+  springs_.stiffness.clear();
+  state_.gain.resize(n);
   for (std::size_t m = 0; m < n; ++m)
-    gain_[m] = world_.time_scale * world_.bodies[std::size_t(members_[m])].inverse_mass;
-  history_changes_.clear();
+    state_.gain[m] = world_.time_scale * world_.bodies[std::size_t(members_[m])].inverse_mass;
+  springs_.history_changes.clear();
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     Contact& c = contacts_[i];
     const MovingBody& first = world_.bodies[std::size_t(c.first_body)];
@@ -163,37 +164,39 @@ void MovingGroup::restart(double t) {
     c.second = c.second_body < 0 ? c.second_body : world_.bodies[std::size_t(c.second_body)].slot;
     if (c.second >= 0)
       c.anchor_offset = world_.bodies[std::size_t(c.second_body)].anchor - first.anchor;
-    c.slot = std::int32_t(active_.size());
-    active_.push_back(std::int32_t(i));
-    Spring& s = springs_.emplace_back(Spring{.first = c.first, .second = c.second});
-    spring_reach_.push_back(c.reach);
-    spring_stiffness_.push_back(c.law.stiffness);
+    c.slot = std::int32_t(springs_.active.size());
+    springs_.active.push_back(std::int32_t(i));
+    Spring& s = springs_.list.emplace_back(Spring{.first = c.first, .second = c.second});
+    springs_.reach.push_back(c.reach);
+    springs_.stiffness.push_back(c.law.stiffness);
     const bool hertz = c.law.effective_restitution() >= 1.0 && c.law.exponent == 1.5;
     if (!hertz || c.second < 0) {
-      s.aside = std::int32_t(springs_aside_.size());
-      springs_aside_.push_back({.law = c.law,
+      s.aside = std::int32_t(springs_.aside.size());
+      springs_.aside.push_back({.law = c.law,
                                 .max_compression = c.max_compression,
-                                .spring = std::int32_t(springs_.size() - 1)});
+                                .spring = std::int32_t(springs_.list.size() - 1)});
     }
     if (c.second >= 0) {
-      s.offset = c.anchor_offset + (origin_[std::size_t(c.second)] - origin_[std::size_t(c.first)]);
+      s.offset = c.anchor_offset +
+                 (state_.origin[std::size_t(c.second)] - state_.origin[std::size_t(c.first)]);
     } else {
       s.offset = world_.geometry.walls[std::size_t(-1 - c.second)].normal;
-      springs_aside_.back().height = wall_height(c);
+      springs_.aside.back().height = wall_height(c);
     }
   }
-  y_.assign(2 * std::size_t(d) * n + active_.size(), 0.0);
+  y_.assign(2 * std::size_t(d) * n + springs_.active.size(), 0.0);
   for (std::size_t m = 0; m < n; ++m)
     for (int k = 0; k < d; ++k)
-      y_[d * (n + m) + std::size_t(k)] = world_.time_scale * velocity_[m](k);
-  entries_.resize(watched_.size());
-  for (std::size_t entry = 0; entry < entries_.size(); ++entry) entries_[entry] = entry;
-  entries_sampled_at_ = std::nan("");
+      y_[d * (n + m) + std::size_t(k)] = world_.time_scale * state_.velocity[m](k);
+  search_.entries.resize(search_.watched.size());
+  for (std::size_t entry = 0; entry < search_.entries.size(); ++entry)
+    search_.entries[entry] = entry;
+  search_.sampled_at = std::nan("");
   probe_.resize(y_.size());
-  peaks_.resize(springs_.size());
-  for (std::size_t j = 0; j < springs_.size(); ++j) {
-    const Contact& c = contacts_[std::size_t(active_[j])];
-    peaks_[j] = {.max_force = c.max_force, .time_of_max = c.time_of_max_force};
+  springs_.peaks.resize(springs_.list.size());
+  for (std::size_t j = 0; j < springs_.list.size(); ++j) {
+    const Contact& c = contacts_[std::size_t(springs_.active[j])];
+    springs_.peaks[j] = {.max_force = c.max_force, .time_of_max = c.time_of_max_force};
   }
   if (!dense_) dense_ = std::make_unique<numerics::RungeKuttaNystrom>(world_.options.ode);
   const StepStart from = step_start();
@@ -226,7 +229,8 @@ MovingGroup::StepStart MovingGroup::step_start() const {
 void MovingGroup::member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
                                Eigen::Vector3d& v) const {
   const int d = dimension_;
-  x = world_.bodies[std::size_t(members_[slot])].anchor + (origin_[slot] + read(y + d * slot, d));
+  x = world_.bodies[std::size_t(members_[slot])].anchor +
+      (state_.origin[slot] + read(y + d * slot, d));
   v = read(y + d * (members_.size() + slot), d) / world_.time_scale;
 }
 
@@ -247,11 +251,11 @@ void MovingGroup::rhs_in(const double* y, double* dydt) {
   // the springs a chunk at a time, its separations and forces on the stack (in the core's cache)
   constexpr std::size_t kChunk = 64;
   double separation[kChunk * D], squared[kChunk], force[kChunk], push[kChunk];
-  const double* reach = spring_reach_.data();
-  const double* stiffness = spring_stiffness_.data();
-  for (std::size_t first = 0; first < springs_.size(); first += kChunk) {
-    const std::size_t count = std::min(kChunk, springs_.size() - first);
-    const Spring* chunk = springs_.data() + first;
+  const double* reach = springs_.reach.data();
+  const double* stiffness = springs_.stiffness.data();
+  for (std::size_t first = 0; first < springs_.list.size(); first += kChunk) {
+    const std::size_t count = std::min(kChunk, springs_.list.size() - first);
+    const Spring* chunk = springs_.list.data() + first;
     for (std::size_t j = 0; j < count; ++j) {  // the separations
       const Spring& s = chunk[j];
       if (s.second < 0) {
@@ -278,23 +282,23 @@ void MovingGroup::rhs_in(const double* y, double* dydt) {
     for (std::size_t j = 0; j < count; ++j) {  // the accelerations, in the springs' order
       const Spring& s = chunk[j];
       double* aa = acceleration + std::size_t(D) * std::size_t(s.first);
-      const double first_gain = gain_[std::size_t(s.first)];
+      const double first_gain = state_.gain[std::size_t(s.first)];
       if (s.second >= 0) {
         if (s.aside >= 0) {  // the bi-stiffness curves
-          const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
+          const SpringAside& aside = springs_.aside[std::size_t(s.aside)];
           const double distance = std::sqrt(squared[j]);
           force[j] = numerics::hysteresis_force(aside.law, reach[first + j] - distance,
                                                 aside.max_compression);
           push[j] = force[j] / distance;
         }
         double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
-        const double second_gain = gain_[std::size_t(s.second)];
+        const double second_gain = state_.gain[std::size_t(s.second)];
         for (int k = 0; k < D; ++k) {
           aa[k] -= first_gain * push[j] * separation[D * j + k];
           ab[k] += second_gain * push[j] * separation[D * j + k];
         }
       } else {  // offset: the wall's normal; height: the origin's above the wall
-        const SpringAside& aside = springs_aside_[std::size_t(s.aside)];
+        const SpringAside& aside = springs_.aside[std::size_t(s.aside)];
         const double* ya = y + std::size_t(D) * std::size_t(s.first);
         double height = aside.height;
         for (int k = 0; k < D; ++k) height += s.offset[k] * ya[k];
@@ -315,14 +319,14 @@ void MovingGroup::move_to(double t) {
   settle_histories(t);
   dense_->state_at(t, y_);
   for (std::size_t m = 0; m < n; ++m) {
-    member_state(m, y_.data(), position_[m], velocity_[m]);
-    shift_[m] = origin_[m] + read(y_.data() + d * m, d);
+    member_state(m, y_.data(), state_.position[m], state_.velocity[m]);
+    state_.shift[m] = state_.origin[m] + read(y_.data() + d * m, d);
   }
-  for (std::int32_t index : active_) {
+  for (std::int32_t index : springs_.active) {
     Contact& c = contacts_[std::size_t(index)];
     // its peak as track_peaks and settle_histories kept it
-    c.max_force = peaks_[std::size_t(c.slot)].max_force;
-    c.time_of_max_force = peaks_[std::size_t(c.slot)].time_of_max;
+    c.max_force = springs_.peaks[std::size_t(c.slot)].max_force;
+    c.time_of_max_force = springs_.peaks[std::size_t(c.slot)].time_of_max;
     c.impulse +=
         y_[2 * std::size_t(d) * n + std::size_t(c.slot)] * world_.mass_scale / world_.time_scale;
     double gap, rate;
@@ -343,8 +347,8 @@ void MovingGroup::track_peaks(double t0, double t1) {
   const std::size_t impulses = 2 * std::size_t(dimension_) * members_.size();
   // the impulses' rates are T F / m (rhs_in)
   const double to_force = world_.mass_scale / world_.time_scale;
-  for (std::size_t j = 0; j < springs_.size(); ++j) {
-    Peak& p = peaks_[j];
+  for (std::size_t j = 0; j < springs_.list.size(); ++j) {
+    Peak& p = springs_.peaks[j];
     const auto peak = dense_->rate_peak(impulses + j, t0, t1, p.max_force / to_force);
     if (!std::isnan(peak.time)) p = {.max_force = to_force * peak.value, .time_of_max = peak.time};
   }
@@ -352,7 +356,7 @@ void MovingGroup::track_peaks(double t0, double t1) {
 
 void MovingGroup::handle(const Event& event) {
   move_to(event.time);
-  for (std::int32_t body : taken_)
+  for (std::int32_t body : search_.taken)
     if (world_.bodies[std::size_t(body)].owner != id_) add_member(body);
   ++world_.stats.group_restarts;
   world_.stats.member_restarts += std::int64_t(members_.size());
@@ -398,15 +402,15 @@ void MovingGroup::integrate(double end) {
 }
 
 Eigen::Vector3d MovingGroup::final_position(std::int32_t slot) const {
-  return position_[std::size_t(slot)];
+  return state_.position[std::size_t(slot)];
 }
 
 void MovingGroup::commit() {
   for (std::size_t m = 0; m < members_.size(); ++m) {
     MovingBody& b = world_.bodies[std::size_t(members_[m])];
-    b.x = position_[m];
-    b.shift = shift_[m];
-    b.v = velocity_[m];
+    b.x = state_.position[m];
+    b.shift = state_.shift[m];
+    b.v = state_.velocity[m];
     b.time = time_;
     b.owner = b.slot = -1;
     b.step_hint = last_step_;
@@ -419,13 +423,9 @@ void MovingGroup::commit() {
     if (c.world_id < 0) c.world_id = world_.contact_id(c.first_body, c.second_body);
     MovingContact& record = world_.contacts[std::size_t(c.world_id)];
     if (record.max_force == 0.0 && c.max_force > 0.0) ++world_.stats.contacts_loaded;
+    static_cast<ContactState&>(record) = c;
     record.joined = c.loaded;
-    record.max_compression = c.max_compression;
-    record.impulse = c.impulse;
-    record.force = c.loaded ? c.force : 0.0;
-    record.max_force = c.max_force;
-    record.time_of_max_force = c.time_of_max_force;
-    record.dissipated = c.dissipated;
+    if (!c.loaded) record.force = 0.0;
     record.stored_energy = c.loaded ? stored_energy(c) : 0.0;
     if (c.loaded) world_.loaded_ids.push_back(c.world_id);
   }

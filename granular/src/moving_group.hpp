@@ -56,27 +56,23 @@ class MovingGroup {
   // elastic one (e = 1) K max(delta, 0)^eta, an inelastic one the bi-stiffness curves from its
   // largest overlap, its history, which changes only where the overlap turns above it (found
   // within a step, and the step amended: amend_switches) and is forgotten where it opens.
-  struct Contact {
+  struct Contact : ContactState {
     std::int32_t world_id = -1;
     std::int32_t first_body = 0, second_body = 0;  // world bodies (second < 0: -1 - wall)
     std::int32_t first = 0, second = 0;            // member slots (second < 0: -1 - wall)
-    numerics::ContactLaw law;
-    double reach = 0.0;            // m: the sum of the radii, or the bead's radius against a wall
-    bool loaded = false;           // overlapping at the last move
-    double max_compression = 0.0;  // m: the history, 0 for an elastic contact
-    double compression = 0.0, force = 0.0;  // m, N: at the last move
-    double impulse = 0.0;                   // N s, until the last restart
-    double max_force = 0.0, time_of_max_force = 0.0, dissipated = 0.0;
-    std::int32_t slot = -1;  // of its impulse in the state, while in the right-hand side
+    double reach = 0.0;        // m: the sum of the radii, or the bead's radius against a wall
+    bool loaded = false;       // overlapping at the last move (force: its force there)
+    double compression = 0.0;  // m, at the last move
+    std::int32_t slot = -1;    // of its impulse in the state, while in the right-hand side
     Eigen::Vector3d anchor_offset = Eigen::Vector3d::Zero();  // m: the second's anchor less the
                                                               // first's (two members)
   };
   // A contact in the right-hand side as the right-hand side reads it, contiguous, in the order
-  // of active_ (its impulse's slot is its index), with its reach and stiffness in arrays beside
-  // it; a law aside for the few that follow the bi-stiffness curves or touch a wall.
+  // of springs_.active (its impulse's slot is its index), with its reach and stiffness in arrays
+  // beside it; a law aside for the few that follow the bi-stiffness curves or touch a wall.
   struct Spring {
     std::int32_t first = 0, second = 0;  // member slots (second < 0: -1 - wall)
-    std::int32_t aside = -1;  // of springs_aside_, or -1: elastic Hertz between two members
+    std::int32_t aside = -1;  // of springs_.aside, or -1: elastic Hertz between two members
     // m: the second's anchor and origin less the first's; against a wall, its unit normal
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   };
@@ -85,7 +81,7 @@ class MovingGroup {
     numerics::ContactLaw law;
     double max_compression = 0.0;  // m
     double height = 0.0;           // m, against a wall: the first's anchor and origin above it
-    std::int32_t spring = 0;       // its index in springs_
+    std::int32_t spring = 0;       // its index in springs_.list
   };
   // An elastic spring's largest force (N), and when (s).
   struct Peak {
@@ -102,7 +98,7 @@ class MovingGroup {
   };
   // A body taken where it touches a member (a restart).
   struct Event {
-    std::size_t entry = 0;  // of watched_
+    std::size_t entry = 0;  // of search_.watched
     double time = 0.0;
   };
   // An inelastic spring's history changed within the step just taken (amend_switches): where
@@ -151,7 +147,7 @@ class MovingGroup {
   // the gap's cubic Hermite formed anew at every step's end, whose gathering and square roots
   // were 7 to 12 % of a packing's run; the dense output evaluated at each peak made the cost
   // grow as the group times its contacts). Only the reported peak forces depend on it, not the
-  // motion. Kept in peaks_, by the springs' order, and folded into the contacts by move_to.
+  // motion. Kept in springs_.peaks, by the springs' order, and folded into the contacts by move_to.
   void track_peaks(double t0, double t1);
   using State = numerics::RungeKuttaNystrom::State;
   // The group's motion as the Nystrom step reads it: its right-hand side, and the amendment at
@@ -184,41 +180,52 @@ class MovingGroup {
                          const State& end_rate, double h);
   void take_step();
 
+  // The members' states at time_ (after move_to), by slot.
+  struct MemberStates {
+    std::vector<Eigen::Vector3d> position, velocity;  // m, m/s
+    std::vector<Eigen::Vector3d> shift;               // position less anchor (m)
+    std::vector<Eigen::Vector3d> origin;              // shifts at the last restart (m)
+    std::vector<double> gain;  // T / m, a force to the state's w' (moving_contacts.hpp)
+  };
+  // The contacts in the right-hand side, as it reads them. It takes the springs a chunk at a
+  // time in three passes: the separations gathered from the state, the elastic Hertz forces
+  // formed together from `reach` and `stiffness` beside them (their square roots and division
+  // are most of a packing's right-hand side, and the compiler packs two contacts' into one
+  // instruction), the accelerations scattered in the springs' order (the same sums as one pass,
+  // to the bit).
+  struct Springs {
+    std::vector<std::int32_t> active;  // of contacts_: those in the right-hand side
+    std::vector<Spring> list;          // the same, as the right-hand side reads them
+    std::vector<SpringAside> aside;
+    std::vector<double> reach, stiffness;        // m, N / m^(3/2): by the springs' order
+    std::vector<Peak> peaks;                     // by the springs' order
+    std::vector<HistoryChange> history_changes;  // of the step just taken, by time
+  };
+  // The event search: every entry's gap and rate at the current segment's ends (the start kept
+  // from the segment before, at sampled_at: a segment's end is the next one's start), and the
+  // few whose ends or cubic Hermite say they may cross within (suspect()) sampled at the
+  // compliant integrator's cuts, where sampling every entry there was a tenth of a run.
+  struct EventSearch {
+    std::vector<Watch> watched;
+    std::vector<std::size_t> entries, suspects;  // entries: all; those searched in this segment
+    std::vector<std::int32_t> taken;  // world bodies the next take event adds (next_event)
+    Samples start_samples, end_samples;
+    double sampled_at = 0.0;  // s, or NaN: start_samples not taken
+    Samples before, after, one;
+  };
+
   MovingWorld& world_;
   std::int32_t id_;
   int dimension_ = 2;
   double start_ = 0.0, time_ = 0.0;
   std::vector<std::int32_t> members_;
   std::size_t paired_members_ = 0;  // members whose pairs with the others are in contacts_
-  std::vector<Eigen::Vector3d> position_, velocity_;  // members', at time_ (after move_to)
-  std::vector<Eigen::Vector3d> shift_;                // members' position less anchor, at time_
-  std::vector<Eigen::Vector3d> origin_;               // members' shifts at the last restart
-  std::vector<Contact> contacts_;     // its members' contacts: every pair within reach
-  std::vector<std::int32_t> active_;  // of contacts_: those in the right-hand side
-  std::vector<Spring> springs_;       // the same, as the right-hand side reads them
-  std::vector<SpringAside> springs_aside_;
-  // the springs' reach (m) and elastic Hertz stiffness (N / m^(3/2)), by the springs' order. The
-  // right-hand side takes the springs a chunk at a time in three passes: the separations
-  // gathered from the state, the elastic Hertz forces formed together (their square roots and
-  // division are most of a packing's right-hand side, and the compiler packs two contacts'
-  // into one instruction), the accelerations scattered in the springs' order (the same sums as
-  // one pass, to the bit).
-  std::vector<double> spring_reach_, spring_stiffness_;
-  std::vector<double> gain_;  // members': T / m, a force to the state's w' (moving_contacts.hpp)
-  std::vector<Peak> peaks_;   // by the springs' order
-  std::vector<HistoryChange> history_changes_;  // of the step just taken, by time
-  std::vector<Watch> watched_;
+  MemberStates state_;
+  std::vector<Contact> contacts_;  // its members' contacts: every pair within reach
+  Springs springs_;
+  EventSearch search_;
   std::unique_ptr<numerics::RungeKuttaNystrom> dense_;
   std::vector<double> y_, probe_;
-  // The event search: every entry's gap and rate at the current segment's ends (the start kept
-  // from the segment before, at entries_sampled_at_: a segment's end is the next one's start), and
-  // the few whose ends or cubic Hermite say they may cross within (suspect()) sampled at the
-  // compliant integrator's cuts, where sampling every entry there was a tenth of a run.
-  std::vector<std::size_t> entries_, suspects_;  // entries: all; those searched in this segment
-  std::vector<std::int32_t> taken_;  // world bodies the next take event adds (next_event)
-  Samples start_samples_, end_samples_;
-  double entries_sampled_at_ = 0.0;  // s, or NaN: start_samples_ not taken
-  Samples before_, after_, one_;
   double last_step_ = 0.0;
   bool fresh_ = true;  // restarted, no step taken since
 };

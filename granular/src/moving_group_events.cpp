@@ -64,7 +64,8 @@ HermiteTurn hermite_turn(double g0, double r0, double g1, double r1, double h) {
 double MovingGroup::wall_height(const Contact& c) const {
   const Plane& wall = world_.geometry.walls[std::size_t(-1 - c.second)];
   const MovingBody& bead = world_.bodies[std::size_t(c.first_body)];
-  return wall.normal.dot(bead.anchor - wall.point) + wall.normal.dot(origin_[std::size_t(c.first)]);
+  return wall.normal.dot(bead.anchor - wall.point) +
+         wall.normal.dot(state_.origin[std::size_t(c.first)]);
 }
 
 // On every elastic contact at every step: read from the state directly.
@@ -72,7 +73,7 @@ void MovingGroup::contact_gap(const Contact& c, const double* y, double& gap, do
   const int d = dimension_;
   const std::size_t velocities = std::size_t(d) * members_.size();
   const std::size_t a = std::size_t(d) * std::size_t(c.first);
-  const double* origin_a = origin_[std::size_t(c.first)].data();
+  const double* origin_a = state_.origin[std::size_t(c.first)].data();
   const double inverse_time_scale = 1.0 / world_.time_scale;
   if (c.second < 0) {
     const Plane& wall = world_.geometry.walls[std::size_t(-1 - c.second)];
@@ -86,7 +87,7 @@ void MovingGroup::contact_gap(const Contact& c, const double* y, double& gap, do
     return;
   }
   const std::size_t b = std::size_t(d) * std::size_t(c.second);
-  const double* origin_b = origin_[std::size_t(c.second)].data();
+  const double* origin_b = state_.origin[std::size_t(c.second)].data();
   double between[3], squared = 0.0, closing = 0.0;
   for (int k = 0; k < d; ++k) {  // as the right-hand side forms it
     between[k] = (c.anchor_offset[k] + (origin_b[k] - origin_a[k])) + (y[b + k] - y[a + k]);
@@ -115,7 +116,7 @@ void MovingGroup::watch_gap(const Watch& w, double t, const double* y, double& g
 void MovingGroup::probe_entry(std::size_t entry, const numerics::RungeKuttaNystrom::Weights& w) {
   const std::size_t n = members_.size();
   const auto d = std::size_t(dimension_);
-  for (std::size_t i = d * std::size_t(watched_[entry].member), end = i + d; i < end; ++i) {
+  for (std::size_t i = d * std::size_t(search_.watched[entry].member), end = i + d; i < end; ++i) {
     probe_[i] = dense_->component_at(w, i);
     probe_[d * n + i] = dense_->component_at(w, d * n + i);
   }
@@ -129,13 +130,14 @@ void MovingGroup::measure(double t, const std::vector<std::size_t>& entries, Sam
   samples.rate.resize(entries.size());
   if (t == dense_->time()) {
     for (std::size_t k = 0; k < entries.size(); ++k)
-      watch_gap(watched_[entries[k]], t, dense_->state().data(), samples.gap[k], samples.rate[k]);
+      watch_gap(search_.watched[entries[k]], t, dense_->state().data(), samples.gap[k],
+                samples.rate[k]);
     return;
   }
   const numerics::RungeKuttaNystrom::Weights w = dense_->weights_at(t);
   for (std::size_t k = 0; k < entries.size(); ++k) {
     probe_entry(entries[k], w);
-    watch_gap(watched_[entries[k]], t, probe_.data(), samples.gap[k], samples.rate[k]);
+    watch_gap(search_.watched[entries[k]], t, probe_.data(), samples.gap[k], samples.rate[k]);
   }
 }
 
@@ -144,8 +146,8 @@ void MovingGroup::measure(double t, const std::vector<std::size_t>& entries, Sam
 // reaches the threshold give or take the turn's depth (a dip that the cubic misses by its whole
 // depth is not a dip the step resolves).
 bool MovingGroup::suspect(std::size_t k, double h, const numerics::Overlaps& overlaps) const {
-  const double g0 = start_samples_.gap[k], g1 = end_samples_.gap[k], r0 = start_samples_.rate[k],
-               r1 = end_samples_.rate[k];
+  const double g0 = search_.start_samples.gap[k], g1 = search_.end_samples.gap[k],
+               r0 = search_.start_samples.rate[k], r1 = search_.end_samples.rate[k];
   // An open entry's one event is its gap reaching -overlaps.join. The cubic Hermite lies at most
   // 4/27 h (|r0| + |r1|) below the smaller end (its rate terms' bound on [0, 1]); twice that, as
   // the dip's margin below, still above the threshold: no event. Touching beads barely moving
@@ -168,26 +170,26 @@ bool MovingGroup::suspect(std::size_t k, double h, const numerics::Overlaps& ove
 // The earliest event of the watched entries in [a, b] of the current step: a body flying freely
 // touched (numerics::classify, as the compliant integrator); located by TOMS 748.
 bool MovingGroup::next_event(double a, double b, Event& event) {
-  if (watched_.empty()) return false;
+  if (search_.watched.empty()) return false;
   const numerics::OdeOptions& ode = world_.options.ode;
   const numerics::Overlaps overlaps{.join = world_.options.overlap_resolution,
                                     .leave = 0.5 * world_.options.overlap_resolution};
   // every entry at the segment's ends, its start kept from the segment before
-  if (entries_sampled_at_ != a) measure(a, entries_, start_samples_);
-  measure(b, entries_, end_samples_);
-  suspects_.clear();
-  for (std::size_t k = 0; k < entries_.size(); ++k)
-    if (suspect(k, b - a, overlaps)) suspects_.push_back(entries_[k]);
-  std::swap(start_samples_, end_samples_);
-  entries_sampled_at_ = b;
-  if (suspects_.empty()) return false;
+  if (search_.sampled_at != a) measure(a, search_.entries, search_.start_samples);
+  measure(b, search_.entries, search_.end_samples);
+  search_.suspects.clear();
+  for (std::size_t k = 0; k < search_.entries.size(); ++k)
+    if (suspect(k, b - a, overlaps)) search_.suspects.push_back(search_.entries[k]);
+  std::swap(search_.start_samples, search_.end_samples);
+  search_.sampled_at = b;
+  if (search_.suspects.empty()) return false;
   // the suspects searched as the compliant integrator searches: at samples_per_step cuts
-  one_.gap.resize(1);
-  one_.rate.resize(1);
+  search_.one.gap.resize(1);
+  search_.one.rate.resize(1);
   auto locate = [&](double t0, double t1, const Samples& s0, const Samples& s1,
                     std::vector<numerics::Crossing>& found) {
-    for (std::size_t k = 0; k < suspects_.size(); ++k) {
-      const std::size_t entry = suspects_[k];
+    for (std::size_t k = 0; k < search_.suspects.size(); ++k) {
+      const std::size_t entry = search_.suspects[k];
       const numerics::ContactWatch w{.gap_before = s0.gap[k],
                                      .gap_after = s1.gap[k],
                                      .rate_before = s0.rate[k],
@@ -204,8 +206,9 @@ bool MovingGroup::next_event(double a, double b, Event& event) {
       const numerics::Bracket bracket = numerics::narrow_crossing(
           [&](double t) {
             probe_entry(entry, dense_->weights_at(t));
-            watch_gap(watched_[entry], t, probe_.data(), one_.gap[0], one_.rate[0]);
-            return value(one_.gap[0], one_.rate[0]);
+            watch_gap(search_.watched[entry], t, probe_.data(), search_.one.gap[0],
+                      search_.one.rate[0]);
+            return value(search_.one.gap[0], search_.one.rate[0]);
           },
           t0, t1, value(s0.gap[k], s0.rate[k]), value(s1.gap[k], s1.rate[k]), ode.event_tolerance);
       found.push_back({long(entry), int(crossed.kind), bracket.upper});
@@ -213,7 +216,8 @@ bool MovingGroup::next_event(double a, double b, Event& event) {
   };
   const auto found = numerics::scan_events(
       {.start = a, .end = b, .samples = ode.samples_per_step, .tolerance = ode.event_tolerance},
-      before_, after_, [&](double t, Samples& s) { measure(t, suspects_, s); }, locate);
+      search_.before, search_.after, [&](double t, Samples& s) { measure(t, search_.suspects, s); },
+      locate);
   if (found.empty()) return false;
   const auto earliest = std::min_element(
       found.begin(), found.end(), [](const auto& p, const auto& q) { return p.time < q.time; });
@@ -221,8 +225,9 @@ bool MovingGroup::next_event(double a, double b, Event& event) {
   // every body found touching within the same cut is taken with it, one restart for the many a
   // symmetric front touches at once (taken early, a body's contact is integrated from its open
   // gap)
-  taken_.clear();
-  for (const auto& crossing : found) taken_.push_back(watched_[std::size_t(crossing.index)].other);
+  search_.taken.clear();
+  for (const auto& crossing : found)
+    search_.taken.push_back(search_.watched[std::size_t(crossing.index)].other);
   return true;
 }
 

@@ -36,7 +36,7 @@ double MovingGroup::amend_switches(const State& start, const State& start_rate, 
   // contacts that barely load).
   const double negligible = 1e-2 * world_.options.ode.absolute_tolerance;
   for (std::size_t j : switching) {
-    const Spring& s = springs_[j];
+    const Spring& s = springs_.list[j];
     if (s.second < 0 || s.aside >= 0 ||
         std::abs(impulses[j] - start[2 * velocities + j]) < negligible)
       continue;
@@ -44,12 +44,12 @@ double MovingGroup::amend_switches(const State& start, const State& start_rate, 
     const Separation s0 = spring_separation(j, start.data(), nullptr, h);
     const Separation s1 = spring_separation(j, end.data(), nullptr, h);
     const Eigen::Vector3d &r0 = s0.r, &u0 = s0.u, &r1 = s1.r, &u1 = s1.u;
-    const numerics::OnsetQuadrature missed =
-        numerics::hertz_onset_quadrature({.r0 = r0, .u0 = u0, .r1 = r1, .u1 = u1}, spring_reach_[j],
-                                         spring_stiffness_[j], nodes, velocity_weights);
+    const numerics::OnsetQuadrature missed = numerics::hertz_onset_quadrature(
+        {.r0 = r0, .u0 = u0, .r1 = r1, .u1 = u1}, springs_.reach[j], springs_.stiffness[j], nodes,
+        velocity_weights);
     for (std::size_t k = 0; k < d; ++k) {
-      end[velocities + d * a + k] -= gain_[a] * h * missed.impulse(k);
-      end[velocities + d * b + k] += gain_[b] * h * missed.impulse(k);
+      end[velocities + d * a + k] -= state_.gain[a] * h * missed.impulse(k);
+      end[velocities + d * b + k] += state_.gain[b] * h * missed.impulse(k);
     }
     impulses[j] += world_.time_scale / world_.mass_scale * h * missed.magnitude;
   }
@@ -67,8 +67,8 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
   const std::size_t velocities = d * members_.size();
   const double leave = 0.5 * world_.options.overlap_resolution;
   double cut = 1.0;
-  history_changes_.clear();
-  for (const SpringAside& aside : springs_aside_) {
+  springs_.history_changes.clear();
+  for (const SpringAside& aside : springs_.aside) {
     if (aside.law.effective_restitution() >= 1.0) continue;
     const auto j = std::size_t(aside.spring);
     numerics::StepSeparation model{.quintic = true};
@@ -76,7 +76,7 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
     const Separation s1 = spring_separation(j, end.data(), end_rate.data(), h);
     model.r0 = s0.r, model.u0 = s0.u, model.a0 = s0.a;
     model.r1 = s1.r, model.u1 = s1.u, model.a1 = s1.a;
-    const double reach = spring_reach_[j], overlap0 = reach - model.r0.norm(),
+    const double reach = springs_.reach[j], overlap0 = reach - model.r0.norm(),
                  overlap1 = reach - model.r1.norm(), history = aside.max_compression;
     const bool closing0 = model.r0.dot(model.u0) < 0.0, closing1 = model.r1.dot(model.u1) < 0.0;
     auto crosses = [&](double threshold) {
@@ -96,30 +96,31 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
       cut = std::min(cut, share);
       continue;
     }
-    const Spring& s = springs_[j];
+    const Spring& s = springs_.list[j];
     auto push = [&](std::size_t slot, double sign) {
       for (std::size_t k = 0; k < d; ++k) {
-        end[velocities + d * slot + k] += sign * gain_[slot] * h * missed.impulse(k);
+        end[velocities + d * slot + k] += sign * state_.gain[slot] * h * missed.impulse(k);
         if (changed)
-          end[d * slot + k] += sign * gain_[slot] * h * h / world_.time_scale * missed.moment(k);
+          end[d * slot + k] +=
+              sign * state_.gain[slot] * h * h / world_.time_scale * missed.moment(k);
       }
     };
     push(std::size_t(s.first), -1.0);
     if (s.second >= 0) push(std::size_t(s.second), 1.0);
     end[2 * velocities + j] += world_.time_scale / world_.mass_scale * h * missed.magnitude;
     for (std::size_t k = 0; k < missed.change_count; ++k)
-      history_changes_.push_back({.spring = std::int32_t(j),
-                                  .time = dense_->time() + missed.changes[k].s * h,
-                                  .overlap = missed.changes[k].history,
-                                  .max_compression = missed.changes[k].history});
+      springs_.history_changes.push_back({.spring = std::int32_t(j),
+                                          .time = dense_->time() + missed.changes[k].s * h,
+                                          .overlap = missed.changes[k].history,
+                                          .max_compression = missed.changes[k].history});
     // An e = 0 contact stays at its turn's overlap, at the foot of its loading curve: a rounding
     // deeper would take the loading force again, for a step the error control shortens until
     // its kick is within the tolerance. Its history lies the overlaps' resolution deeper.
-    if (changed && history_changes_.back().max_compression > 0.0 &&
+    if (changed && springs_.history_changes.back().max_compression > 0.0 &&
         aside.law.effective_restitution() == 0.0)
-      history_changes_.back().max_compression += world_.options.overlap_resolution;
+      springs_.history_changes.back().max_compression += world_.options.overlap_resolution;
   }
-  if (cut < 1.0) history_changes_.clear();
+  if (cut < 1.0) springs_.history_changes.clear();
   return cut;
 }
 
@@ -145,9 +146,10 @@ double MovingGroup::turn_cut(std::size_t j, const numerics::ContactLaw& law,
   // that at most; at e = 0 the force drops at once, exactly as amended)
   const double ratio = fall / (e * e * turn->history),
                share = ratio <= 1.0 ? ratio * ratio : 1.0 / std::sqrt(ratio);
-  const Spring& s = springs_[j];
+  const Spring& s = springs_.list[j];
   const double inverse_mass =  // 1 / kg, the lighter body's
-      std::max(gain_[std::size_t(s.first)], s.second >= 0 ? gain_[std::size_t(s.second)] : 0.0) /
+      std::max(state_.gain[std::size_t(s.first)],
+               s.second >= 0 ? state_.gain[std::size_t(s.second)] : 0.0) /
       world_.time_scale;
   const double speed_error = law.exponent * law.exponent / 30.0 * law.force(turn->history) * share *
                              (1.0 - turn->s) * h * inverse_mass;
@@ -164,11 +166,11 @@ MovingGroup::Separation MovingGroup::spring_separation(std::size_t j, const doub
   const std::size_t velocities = d * members_.size();
   // w = T v, w' = T x'': h w / T and h^2 w' / T
   const double to_rate = h * (1.0 / world_.time_scale), to_acceleration = h * to_rate;
-  const Spring& s = springs_[j];
+  const Spring& s = springs_.list[j];
   const std::size_t first = d * std::size_t(s.first);
   a.setZero();
   if (s.second < 0) {  // from the bead to the wall's plane, along its normal
-    double height = springs_aside_[std::size_t(s.aside)].height, speed = 0.0, pull = 0.0;
+    double height = springs_.aside[std::size_t(s.aside)].height, speed = 0.0, pull = 0.0;
     for (std::size_t k = 0; k < d; ++k) {
       height += s.offset[k] * y[first + k];
       speed += s.offset[k] * y[velocities + first + k];
@@ -208,22 +210,23 @@ double MovingGroup::stored_energy(const Contact& c) {
 // opened, no history.
 void MovingGroup::settle_histories(double t) {
   bool changed = false;
-  for (const HistoryChange& change : history_changes_) {
+  for (const HistoryChange& change : springs_.history_changes) {
     if (change.time > t) continue;
     const auto j = std::size_t(change.spring);
-    Contact& c = contacts_[std::size_t(active_[j])];
+    Contact& c = contacts_[std::size_t(springs_.active[j])];
     if (change.overlap > 0.0) {
       const double e = c.law.restitution;
       c.dissipated += (1.0 - e * e) * (numerics::hysteresis_energy(c.law, change.overlap, 0.0) -
                                        numerics::hysteresis_energy(c.law, c.max_compression, 0.0));
       const double peak = c.law.force(change.overlap);
-      if (peak > peaks_[j].max_force) peaks_[j] = {.max_force = peak, .time_of_max = change.time};
+      if (peak > springs_.peaks[j].max_force)
+        springs_.peaks[j] = {.max_force = peak, .time_of_max = change.time};
     }
     c.max_compression = change.max_compression;
-    springs_aside_[std::size_t(springs_[j].aside)].max_compression = change.max_compression;
+    springs_.aside[std::size_t(springs_.list[j].aside)].max_compression = change.max_compression;
     changed = true;
   }
-  history_changes_.clear();
+  springs_.history_changes.clear();
   if (changed) dense_->refresh_derivative();
 }
 

@@ -6,18 +6,25 @@
 
 namespace mimpact::granular {
 
-// One contact that has carried force: two bodies, or a body and a wall.
-struct MovingContact {
-  std::int32_t first = 0;
-  std::int32_t second = 0;  // a body, or -1 - w for wall w
+// What a contact carries from one window to the next and reports, wherever it is held (the
+// world's record, MovingContact, or a group's working copy while it integrates the contact): its
+// law, its history (the normal one, its largest overlap since it closed; a tangential one
+// belongs beside it) and its record over the run. One definition, copied whole between the two.
+struct ContactState {
   numerics::ContactLaw law;
-  bool joined = false;           // carries force now
   double max_compression = 0.0;  // m, since it last closed: where it unloads from (e < 1)
   double impulse = 0.0;          // N s, of its force over the run
   double force = 0.0;            // N, now
   double max_force = 0.0;        // N, and when (s)
   double time_of_max_force = 0.0;
-  double dissipated = 0.0;     // J, lost at its turns from loading to unloading (e < 1)
+  double dissipated = 0.0;  // J, lost at its turns from loading to unloading (e < 1)
+};
+
+// One contact that has carried force: two bodies, or a body and a wall.
+struct MovingContact : ContactState {
+  std::int32_t first = 0;
+  std::int32_t second = 0;     // a body, or -1 - w for wall w
+  bool joined = false;         // carries force now
   double stored_energy = 0.0;  // J, now
 
   bool wall() const { return second < 0; }
