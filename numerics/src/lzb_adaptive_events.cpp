@@ -15,12 +15,13 @@ using Eigen::Index;
 using namespace adaptive_lzb;  // the impact's phases, switches and constants
 
 double adaptive_lzb::Impact::member_velocity(const State& y, std::size_t member) const {
-  return column_velocity(member, [&](std::size_t other) { return y[active_ + other]; });
+  return column_velocity(member, [&](std::size_t other) { return y[segment_.active + other]; });
 }
 
 double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const State& y) const {
   if (kind == release)
-    return y[member] * delta_scale_[members_[member]] - release_level_[members_[member]];
+    return y[member] * law_.delta_scale[segment_.members[member]] -
+           contact_.release_level[segment_.members[member]];
   const double velocity = member_velocity(y, member);
   switch (kind) {
     case join:
@@ -36,16 +37,17 @@ double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const St
 // expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
 
 void adaptive_lzb::Impact::watch(double t, Watched& values) {
-  const State* y = &y_at_;
+  const State* y = &segment_.y_at;
   if (t == ode_.time())
     y = &ode_.state();
   else
-    ode_.state_at(t, y_at_);
-  values.velocity.resize(members_.size());
-  values.delta.resize(active_);
+    ode_.state_at(t, segment_.y_at);
+  values.velocity.resize(segment_.members.size());
+  values.delta.resize(segment_.active);
   member_velocities(*y, values.velocity);
   // unclamped, so that a release at delta = 0 is narrowed where delta changes sign
-  for (std::size_t a = 0; a < active_; ++a) values.delta[a] = (*y)[a] * delta_scale_[members_[a]];
+  for (std::size_t a = 0; a < segment_.active; ++a)
+    values.delta[a] = (*y)[a] * law_.delta_scale[segment_.members[a]];
 }
 
 // The quantity that is > 0 before the switch `kind` of a member and <= 0 once it happened.
@@ -59,7 +61,7 @@ double adaptive_lzb::Impact::watched_value(std::size_t member, int kind,
     case reload:
       return values.velocity[member];
     default:  // release
-      return values.delta[member] - release_level_[members_[member]];
+      return values.delta[member] - contact_.release_level[segment_.members[member]];
   }
 }
 
@@ -67,7 +69,7 @@ double adaptive_lzb::Impact::watched_value(std::size_t member, int kind,
 // Every member is on the near side of its switches when a segment starts, up to rounding.
 void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, const Watched& after,
                                   std::vector<Crossing>& found) {
-  if (within_steps_) {
+  if (within_.on) {
     locate_turns(t0, t1, before, after);
     return;
   }
@@ -82,15 +84,15 @@ void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, c
       // packing keeps hundreds of contacts in the impact, and every narrowing step asked for
       // all of them)
       auto q = [&](double t) {
-        ode_.state_at(t, y_at_);
-        return member_value(member, kind, y_at_);
+        ode_.state_at(t, segment_.y_at);
+        return member_value(member, kind, segment_.y_at);
       };
       crossing = narrow_crossing(q, t0, t1, q0, q1, resolution).upper;
     }
     found.push_back({long(member), kind, crossing});
   };
-  for (std::size_t p = 0; p < members_.size(); ++p) {
-    switch (phase_[members_[p]]) {
+  for (std::size_t p = 0; p < segment_.members.size(); ++p) {
+    switch (contact_.phase[segment_.members[p]]) {
       case Phase::open:
         check(p, join);
         break;

@@ -89,15 +89,15 @@ class Impact {
   // contacts whose impulses move u_j); `impulse(a)` gives active member a's scaled P increment
   template <class Impulse>
   double column_velocity(std::size_t member, Impulse&& impulse) const {
-    const Eigen::Index j = members_[member];
-    double velocity = velocity_[j];
+    const Eigen::Index j = segment_.members[member];
+    double velocity = contact_.velocity[j];
     const int* start = H_->outerIndexPtr();
     const int* row = H_->innerIndexPtr();
     const double* value = H_->valuePtr();
     for (int k = start[j]; k < start[j + 1]; ++k) {
-      const int other = member_of_[row[k]];
-      if (other >= 0 && std::size_t(other) < active_)
-        velocity += value[k] * impulse(std::size_t(other)) * impulse_scale_[row[k]];
+      const int other = contact_.member_of[row[k]];
+      if (other >= 0 && std::size_t(other) < segment_.active)
+        velocity += value[k] * impulse(std::size_t(other)) * law_.impulse_scale[row[k]];
     }
     return velocity;
   }
@@ -122,7 +122,7 @@ class Impact {
   void locate_turns(double t0, double t1, const Watched& before, const Watched& after);
   double member_velocity_at(const DenseOutput::Weights& w, std::size_t member) const;
   // the peaks and closings of the step [t0, t1] just taken; true if one changed the state (then
-  // y_settled_ holds it)
+  // within_.y_settled holds it)
   bool settle_turns(double t0, double t1);
   bool settle_member(double t0, double t1, std::span<const Turn> turns);
   // a contact of the outer ring holds energy or approaches: its neighbours must join
@@ -130,17 +130,55 @@ class Impact {
 
   // contact j holds energy or approaches faster than tolerance * V (at the last segment's end)
   bool takes_part(Eigen::Index j) const {
-    return delta_[j] > 0.0 || velocity_[j] < -velocity_tolerance_;
+    return contact_.delta[j] > 0.0 || contact_.velocity[j] < -velocity_tolerance_;
   }
   double delta_of(std::size_t member, const State& y) const {
-    return std::max(y[member], 0.0) * delta_scale_[members_[member]];
+    return std::max(y[member], 0.0) * law_.delta_scale[segment_.members[member]];
   }
   double force(Eigen::Index j, double delta) const {
-    return stiffness_[j] * power_law(delta, exponent_[j]);
+    return law_.stiffness[j] * power_law(delta, law_.exponent[j]);
   }
   double energy(Eigen::Index j, double delta) const {
-    return force(j, delta) * delta / (1.0 + exponent_[j]);
+    return force(j, delta) * delta / (1.0 + law_.exponent[j]);
   }
+
+  // per contact: the law's constants and scales, fixed for the impact
+  struct ContactConstants {
+    std::vector<double> stiffness, exponent, expansion_rate, release_factor;
+    std::vector<double> delta_scale, impulse_scale, energy_tolerance;
+    std::vector<double> self_mobility;     // H_jj (1/kg)
+    std::vector<bool> gives_nothing_back;  // e = 0
+  };
+  // per contact: the state at the start of the current segment
+  struct ContactStates {
+    std::vector<Phase> phase;
+    std::vector<double> delta, impulse, velocity, release_level, max_force, time_of_max;
+    std::vector<double> work;    // J, the integral of -u_j dP_j so far
+    std::vector<int> member_of;  // the contact's place in the segment's members, -1 if none
+  };
+  // the current segment
+  struct Segment {
+    std::vector<Eigen::Index> members;  // the active contacts first, then the watched ones
+    std::size_t active = 0;
+    // per active member: d delta_j/dt = -rate u_j over the segment (1, or 1/e^2 expanding)
+    std::vector<double> rate;
+    State y, y_at;
+    std::vector<double> rhs_velocity, velocity_at;
+    // per active member: its impulse increment and velocity where the work was last accounted
+    std::vector<double> accounted_impulse, accounted_velocity;
+    Watched before, after;
+    std::vector<Eigen::Index> previous_members;  // begin_segment's buffer
+  };
+  // within the steps (impacts whose laws are continuous at their switches)
+  struct WithinSteps {
+    bool continuous_laws = false;       // every contact's law continuous at its switches
+    bool on = false;                    // the current segment keeps its switches within its steps
+    std::size_t enter = 0, leave = 0;   // contacts taking part
+    std::vector<unsigned char> ring;    // per member: 0 holding energy or approaching, 1, 2 around
+    std::vector<Turn> turns;            // by member, then time, once settle_turns sorts them
+    State y_settled;                    // the state at a step's end with its turns settled
+    std::vector<Eigen::Index> pending;  // non-members a member's impulse set approaching
+  };
 
   const Eigen::SparseMatrix<double>* H_ = nullptr;
   DenseOutput ode_;
@@ -148,53 +186,28 @@ class Impact {
   double sample_interval_ = 0.0;
   std::int64_t steps_ = 0, contact_steps_ = 0;
   double segment_start_ = 0.0, last_sample_ = 0.0, closed_impulse_sum_ = 0.0;
-
-  // per active member: d delta_j/dt = -rate u_j over the segment (1, or 1/e^2 expanding)
-  std::vector<double> rate_;
-  // per contact: law constants and scales
-  std::vector<double> stiffness_, exponent_, expansion_rate_, release_factor_;
-  std::vector<double> delta_scale_, impulse_scale_, energy_tolerance_;
-  std::vector<double> self_mobility_;     // H_jj (1/kg)
-  double local_tolerance_ = 0.0;          // a step's error share, in the state's scaled units
-  std::vector<bool> gives_nothing_back_;  // e = 0
-  // per contact: state at the start of the current segment
-  std::vector<Phase> phase_;
-  std::vector<double> delta_, impulse_, velocity_, release_level_, max_force_, time_of_max_;
-  std::vector<double> work_;    // J, the integral of -u_j dP_j so far
-  std::vector<int> member_of_;  // the contact's place in members_, -1 if none
-  // the segment
-  std::vector<Eigen::Index> members_;  // the active contacts first, then the watched ones
-  std::size_t active_ = 0;
-  State y_, y_at_;
-  std::vector<double> rhs_velocity_, velocity_at_;
-  // per active member: its impulse increment and velocity where the work was last accounted
-  std::vector<double> accounted_impulse_, accounted_velocity_;
-  Watched before_, after_;
-  std::vector<Eigen::Index> previous_members_;  // begin_segment's buffer
-  // within the steps (impacts whose laws are continuous at their switches)
-  bool continuous_laws_ = false;  // every contact's law continuous at its switches
-  bool within_steps_ = false;     // the current segment keeps its switches within its steps
-  std::size_t enter_within_steps_ = 0, leave_within_steps_ = 0;  // contacts taking part
-  std::vector<unsigned char> ring_;    // per member: 0 holding energy or approaching, 1, 2 around
-  std::vector<Turn> turns_;            // by member, then time, once settle_turns sorts them
-  State y_settled_;                    // the state at a step's end with its turns settled
-  std::vector<Eigen::Index> pending_;  // non-members a member's impulse set approaching
-  ImpactSampler* sampler_ = nullptr;   // the integrator's, for the impact being integrated
+  double local_tolerance_ = 0.0;  // a step's error share, in the state's scaled units
+  ContactConstants law_;
+  ContactStates contact_;
+  Segment segment_;
+  WithinSteps within_;
+  ImpactSampler* sampler_ = nullptr;  // the integrator's, for the impact being integrated
 };
 
 // u of every member (read by the right-hand side and the event search alike: inline in both)
 inline void Impact::member_velocities(const State& y, std::vector<double>& velocity) const {
-  for (std::size_t p = 0; p < members_.size(); ++p) velocity[p] = velocity_[members_[p]];
+  for (std::size_t p = 0; p < segment_.members.size(); ++p)
+    velocity[p] = contact_.velocity[segment_.members[p]];
   const int* start = H_->outerIndexPtr();
   const int* row = H_->innerIndexPtr();
   const double* value = H_->valuePtr();
-  for (std::size_t a = 0; a < active_; ++a) {
-    const Eigen::Index j = members_[a];
-    const double increment = y[active_ + a] * impulse_scale_[j];
+  for (std::size_t a = 0; a < segment_.active; ++a) {
+    const Eigen::Index j = segment_.members[a];
+    const double increment = y[segment_.active + a] * law_.impulse_scale[j];
     // (a segment within the steps: its outer ring has neighbours beyond the members, moved by
     // end_segment)
     for (int k = start[j]; k < start[j + 1]; ++k)
-      if (const int other = member_of_[row[k]]; other >= 0)
+      if (const int other = contact_.member_of[row[k]]; other >= 0)
         velocity[std::size_t(other)] += value[k] * increment;
   }
 }

@@ -25,56 +25,58 @@ void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen:
   velocity_tolerance_ = options.tolerance * fastest;
   sample_interval_ = options.sample_interval;
   auto reset = [m](auto& buffer, auto value) { buffer.assign(m, value); };
-  reset(stiffness_, 0.0);
-  reset(exponent_, 0.0);
-  reset(expansion_rate_, 0.0);
-  reset(release_factor_, 0.0);
-  reset(delta_scale_, 0.0);
-  reset(impulse_scale_, 0.0);
-  reset(energy_tolerance_, 0.0);
-  reset(self_mobility_, 0.0);
+  reset(law_.stiffness, 0.0);
+  reset(law_.exponent, 0.0);
+  reset(law_.expansion_rate, 0.0);
+  reset(law_.release_factor, 0.0);
+  reset(law_.delta_scale, 0.0);
+  reset(law_.impulse_scale, 0.0);
+  reset(law_.energy_tolerance, 0.0);
+  reset(law_.self_mobility, 0.0);
   local_tolerance_ = kLocalErrorShare * options.tolerance;
-  reset(gives_nothing_back_, false);
+  reset(law_.gives_nothing_back, false);
   for (std::size_t j = 0; j < m; ++j) {
     const LawConstants& law = laws[j];
     const double e2 = law.restitution * law.restitution;
     const bool mono = law.mono_stiffness;
-    stiffness_[j] = law.stiffness;
-    exponent_[j] = law.exponent;
+    law_.stiffness[j] = law.stiffness;
+    law_.exponent[j] = law.exponent;
     // expansion: d delta/dt = -u / e^2 (bi-stiffness) or -u (mono-stiffness)
-    expansion_rate_[j] = mono || e2 == 0.0 ? 1.0 : law.inverse_e2;
+    law_.expansion_rate[j] = mono || e2 == 0.0 ? 1.0 : law.inverse_e2;
     // released at delta_c (1 - e^2)^(1/(1+eta)) (mono-stiffness) or at 0 (bi-stiffness)
-    release_factor_[j] = mono ? std::pow(1.0 - e2, 1.0 / law.one_plus_exponent) : 0.0;
-    gives_nothing_back_[j] = law.restitution == 0.0;
+    law_.release_factor[j] = mono ? std::pow(1.0 - e2, 1.0 / law.one_plus_exponent) : 0.0;
+    law_.gives_nothing_back[j] = law.restitution == 0.0;
     // the natural scales of contact j: the impulse that stops V, the indentation that stores
     // the energy V^2 / (2 H_jj)
     const double h = diagonal(Index(j));
-    self_mobility_[j] = h;
-    impulse_scale_[j] = fastest / h;
-    delta_scale_[j] = std::pow((1.0 + law.exponent) * fastest * fastest / (2.0 * h * law.stiffness),
-                               1.0 / (1.0 + law.exponent));
-    energy_tolerance_[j] = velocity_tolerance_ * velocity_tolerance_ / (2.0 * h);
+    law_.self_mobility[j] = h;
+    law_.impulse_scale[j] = fastest / h;
+    law_.delta_scale[j] =
+        std::pow((1.0 + law.exponent) * fastest * fastest / (2.0 * h * law.stiffness),
+                 1.0 / (1.0 + law.exponent));
+    law_.energy_tolerance[j] = velocity_tolerance_ * velocity_tolerance_ / (2.0 * h);
   }
-  reset(phase_, Phase::open);
-  reset(delta_, 0.0);
-  reset(impulse_, 0.0);
-  reset(release_level_, 0.0);
-  reset(max_force_, 0.0);
-  reset(time_of_max_, 0.0);
-  reset(work_, 0.0);
-  reset(member_of_, -1);
-  velocity_.assign(u_minus.data(), u_minus.data() + m);
+  reset(contact_.phase, Phase::open);
+  reset(contact_.delta, 0.0);
+  reset(contact_.impulse, 0.0);
+  reset(contact_.release_level, 0.0);
+  reset(contact_.max_force, 0.0);
+  reset(contact_.time_of_max, 0.0);
+  reset(contact_.work, 0.0);
+  reset(contact_.member_of, -1);
+  contact_.velocity.assign(u_minus.data(), u_minus.data() + m);
   for (std::size_t j = 0; j < m; ++j)
-    if (velocity_[j] < -velocity_tolerance_) phase_[j] = Phase::compression;
-  members_.clear();
-  pending_.clear();
-  continuous_laws_ = m > 0;
+    if (contact_.velocity[j] < -velocity_tolerance_) contact_.phase[j] = Phase::compression;
+  segment_.members.clear();
+  within_.pending.clear();
+  within_.continuous_laws = m > 0;
   for (std::size_t j = 0; j < m; ++j)
-    continuous_laws_ = continuous_laws_ && (laws[j].restitution == 1.0 ||
-                                            (!laws[j].mono_stiffness && laws[j].restitution > 0.0));
-  within_steps_ = false;
-  enter_within_steps_ = std::size_t(options.within_steps_from);
-  leave_within_steps_ = enter_within_steps_ / 2;
+    within_.continuous_laws =
+        within_.continuous_laws &&
+        (laws[j].restitution == 1.0 || (!laws[j].mono_stiffness && laws[j].restitution > 0.0));
+  within_.on = false;
+  within_.enter = std::size_t(options.within_steps_from);
+  within_.leave = within_.enter / 2;
   steps_ = contact_steps_ = 0;
   segment_start_ = last_sample_ = closed_impulse_sum_ = 0.0;
 }
@@ -82,118 +84,121 @@ void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen:
 // The members of the segment that starts now: the contacts holding energy, then the open
 // contacts their forces reach through H. The ODE state starts at [delta / scale, 0].
 void adaptive_lzb::Impact::begin_segment() {
-  if (continuous_laws_) {
+  if (within_.continuous_laws) {
     std::size_t core = 0;
     auto count = [&](Index j) { core += takes_part(j); };
-    if (members_.empty())
-      for (Index j = 0; j < Index(phase_.size()); ++j) count(j);
-    for (Index j : members_) count(j);
-    core += pending_.size();
-    within_steps_ = core >= (within_steps_ ? leave_within_steps_ : enter_within_steps_);
+    if (segment_.members.empty())
+      for (Index j = 0; j < Index(contact_.phase.size()); ++j) count(j);
+    for (Index j : segment_.members) count(j);
+    core += within_.pending.size();
+    within_.on = core >= (within_.on ? within_.leave : within_.enter);
   }
-  if (within_steps_) {
+  if (within_.on) {
     begin_within_steps_segment();
     return;
   }
-  for (Index j : members_) member_of_[j] = -1;
-  std::vector<Index>& previous = previous_members_;
-  previous.swap(members_);
-  members_.clear();
-  previous.insert(previous.end(), pending_.begin(), pending_.end());
-  pending_.clear();
+  for (Index j : segment_.members) contact_.member_of[j] = -1;
+  std::vector<Index>& previous = segment_.previous_members;
+  previous.swap(segment_.members);
+  segment_.members.clear();
+  previous.insert(previous.end(), within_.pending.begin(), within_.pending.end());
+  within_.pending.clear();
   // the active contacts were members already (a contact becomes active only by a switch at a
   // member), so the new active set is found among the previous members, in their order
   for (Index j : previous)
-    if (phase_[j] != Phase::open) {
-      member_of_[j] = int(members_.size());
-      members_.push_back(j);
+    if (contact_.phase[j] != Phase::open) {
+      contact_.member_of[j] = int(segment_.members.size());
+      segment_.members.push_back(j);
     }
   if (previous.empty())  // the first segment
-    for (Index j = 0; j < Index(phase_.size()); ++j)
-      if (phase_[j] != Phase::open) {
-        member_of_[j] = int(members_.size());
-        members_.push_back(j);
+    for (Index j = 0; j < Index(contact_.phase.size()); ++j)
+      if (contact_.phase[j] != Phase::open) {
+        contact_.member_of[j] = int(segment_.members.size());
+        segment_.members.push_back(j);
       }
-  active_ = members_.size();
+  segment_.active = segment_.members.size();
   const int* start = H_->outerIndexPtr();
   const int* row = H_->innerIndexPtr();
-  for (std::size_t a = 0; a < active_; ++a)
-    for (int k = start[members_[a]]; k < start[members_[a] + 1]; ++k)
-      if (member_of_[row[k]] < 0) {
-        member_of_[row[k]] = int(members_.size());
-        members_.push_back(row[k]);
+  for (std::size_t a = 0; a < segment_.active; ++a)
+    for (int k = start[segment_.members[a]]; k < start[segment_.members[a] + 1]; ++k)
+      if (contact_.member_of[row[k]] < 0) {
+        contact_.member_of[row[k]] = int(segment_.members.size());
+        segment_.members.push_back(row[k]);
       }
   size_segment();
 }
 
 // The ODE state [delta / scale, 0] of the members that carry one, and the buffers.
 void adaptive_lzb::Impact::size_segment() {
-  y_.assign(2 * active_, 0.0);
-  y_at_.assign(2 * active_, 0.0);
-  rate_.resize(active_);
-  for (std::size_t a = 0; a < active_; ++a) {
-    const Index j = members_[a];
-    y_[a] = delta_[j] / delta_scale_[j];
-    rate_[a] = phase_[j] == Phase::expansion ? expansion_rate_[j] : 1.0;
+  segment_.y.assign(2 * segment_.active, 0.0);
+  segment_.y_at.assign(2 * segment_.active, 0.0);
+  segment_.rate.resize(segment_.active);
+  for (std::size_t a = 0; a < segment_.active; ++a) {
+    const Index j = segment_.members[a];
+    segment_.y[a] = contact_.delta[j] / law_.delta_scale[j];
+    segment_.rate[a] = contact_.phase[j] == Phase::expansion ? law_.expansion_rate[j] : 1.0;
   }
-  rhs_velocity_.resize(members_.size());
-  velocity_at_.resize(members_.size());
-  accounted_impulse_.assign(active_, 0.0);
-  accounted_velocity_.resize(active_);
-  for (std::size_t a = 0; a < active_; ++a) accounted_velocity_[a] = velocity_[members_[a]];
+  segment_.rhs_velocity.resize(segment_.members.size());
+  segment_.velocity_at.resize(segment_.members.size());
+  segment_.accounted_impulse.assign(segment_.active, 0.0);
+  segment_.accounted_velocity.resize(segment_.active);
+  for (std::size_t a = 0; a < segment_.active; ++a)
+    segment_.accounted_velocity[a] = contact_.velocity[segment_.members[a]];
 }
 
 // The contacts' work since the last accounting point, by the trapezoidal rule on u: per contact
 // an approximation of the integral of -u_j dP_j, summed over them exact, since u is linear in P
 // (the kinetic energy lost to round-off, docs/model.md section 12; docs/design/adaptive_lzb.md).
 void adaptive_lzb::Impact::account_work(const State& y) {
-  member_velocities(y, velocity_at_);
-  for (std::size_t a = 0; a < active_; ++a) {
-    const Index j = members_[a];
-    const double impulse = y[active_ + a] * impulse_scale_[j];
-    work_[j] -=
-        0.5 * (accounted_velocity_[a] + velocity_at_[a]) * (impulse - accounted_impulse_[a]);
-    accounted_velocity_[a] = velocity_at_[a];
-    accounted_impulse_[a] = impulse;
+  member_velocities(y, segment_.velocity_at);
+  for (std::size_t a = 0; a < segment_.active; ++a) {
+    const Index j = segment_.members[a];
+    const double impulse = y[segment_.active + a] * law_.impulse_scale[j];
+    contact_.work[j] -= 0.5 * (segment_.accounted_velocity[a] + segment_.velocity_at[a]) *
+                        (impulse - segment_.accounted_impulse[a]);
+    segment_.accounted_velocity[a] = segment_.velocity_at[a];
+    segment_.accounted_impulse[a] = impulse;
   }
 }
 
 void adaptive_lzb::Impact::derivative(const State& y, State& dydt) {
-  member_velocities(y, rhs_velocity_);
-  for (std::size_t a = 0; a < active_; ++a) {
-    const Index j = members_[a];
-    dydt[a] = -rhs_velocity_[a] * rate_[a] / delta_scale_[j];
-    dydt[active_ + a] = force(j, delta_of(a, y)) / impulse_scale_[j];
+  member_velocities(y, segment_.rhs_velocity);
+  for (std::size_t a = 0; a < segment_.active; ++a) {
+    const Index j = segment_.members[a];
+    dydt[a] = -segment_.rhs_velocity[a] * segment_.rate[a] / law_.delta_scale[j];
+    dydt[segment_.active + a] = force(j, delta_of(a, y)) / law_.impulse_scale[j];
   }
 }
 
 // Writes the members' state at the end of the segment (state y) into the per-contact arrays.
 void adaptive_lzb::Impact::end_segment(const State& y) {
-  member_velocities(y, velocity_at_);
-  for (std::size_t p = 0; p < members_.size(); ++p) velocity_[members_[p]] = velocity_at_[p];
+  member_velocities(y, segment_.velocity_at);
+  for (std::size_t p = 0; p < segment_.members.size(); ++p)
+    contact_.velocity[segment_.members[p]] = segment_.velocity_at[p];
   const int* start = H_->outerIndexPtr();
   const int* row = H_->innerIndexPtr();
   const double* value = H_->valuePtr();
-  for (std::size_t a = 0; a < active_; ++a) {
-    const Index j = members_[a];
-    delta_[j] = delta_of(a, y);
-    const double increment = y[active_ + a] * impulse_scale_[j];
-    impulse_[j] += increment;
+  for (std::size_t a = 0; a < segment_.active; ++a) {
+    const Index j = segment_.members[a];
+    contact_.delta[j] = delta_of(a, y);
+    const double increment = y[segment_.active + a] * law_.impulse_scale[j];
+    contact_.impulse[j] += increment;
     closed_impulse_sum_ += increment;
-    if (!within_steps_) continue;
+    if (!within_.on) continue;
     // the phases a segment that locates its switches starts from
-    const double u = velocity_[j];
-    phase_[j] = delta_[j] > 0.0            ? (u < 0.0 ? Phase::compression : Phase::expansion)
-                : u < -velocity_tolerance_ ? Phase::compression
-                                           : Phase::open;
+    const double u = contact_.velocity[j];
+    contact_.phase[j] = contact_.delta[j] > 0.0 ? (u < 0.0 ? Phase::compression : Phase::expansion)
+                        : u < -velocity_tolerance_ ? Phase::compression
+                                                   : Phase::open;
     // an outer ring's contact that loaded within the last step moved contacts beyond the members
-    if (ring_[a] == 2 && increment != 0.0)
+    if (within_.ring[a] == 2 && increment != 0.0)
       for (int k = start[j]; k < start[j + 1]; ++k)
-        if (const Index other = row[k]; member_of_[other] < 0) {
-          velocity_[other] += value[k] * increment;
-          if (velocity_[other] < -velocity_tolerance_ && phase_[other] == Phase::open) {
-            phase_[other] = Phase::compression;  // joining
-            pending_.push_back(other);
+        if (const Index other = row[k]; contact_.member_of[other] < 0) {
+          contact_.velocity[other] += value[k] * increment;
+          if (contact_.velocity[other] < -velocity_tolerance_ &&
+              contact_.phase[other] == Phase::open) {
+            contact_.phase[other] = Phase::compression;  // joining
+            within_.pending.push_back(other);
           }
         }
   }
@@ -201,27 +206,27 @@ void adaptive_lzb::Impact::end_segment(const State& y) {
 
 void adaptive_lzb::Impact::apply(const std::vector<Crossing>& crossings, double t) {
   for (const Crossing& crossing : crossings) {
-    const Index j = members_[std::size_t(crossing.index)];
+    const Index j = segment_.members[std::size_t(crossing.index)];
     switch (crossing.kind) {
       case join:
-        phase_[j] = Phase::compression;
-        delta_[j] = 0.0;
+        contact_.phase[j] = Phase::compression;
+        contact_.delta[j] = 0.0;
         break;
       case compression_end:
-        if (const double f = force(j, delta_[j]); f > max_force_[j]) {
-          max_force_[j] = f;
-          time_of_max_[j] = t;
+        if (const double f = force(j, contact_.delta[j]); f > contact_.max_force[j]) {
+          contact_.max_force[j] = f;
+          contact_.time_of_max[j] = t;
         }
-        phase_[j] = gives_nothing_back_[j] ? Phase::open : Phase::expansion;
-        if (gives_nothing_back_[j]) delta_[j] = 0.0;
-        release_level_[j] = release_factor_[j] * delta_[j];
+        contact_.phase[j] = law_.gives_nothing_back[j] ? Phase::open : Phase::expansion;
+        if (law_.gives_nothing_back[j]) contact_.delta[j] = 0.0;
+        contact_.release_level[j] = law_.release_factor[j] * contact_.delta[j];
         break;
       case reload:
-        phase_[j] = Phase::compression;
+        contact_.phase[j] = Phase::compression;
         break;
       default:  // release
-        phase_[j] = Phase::open;
-        delta_[j] = 0.0;
+        contact_.phase[j] = Phase::open;
+        contact_.delta[j] = 0.0;
         break;
     }
   }
@@ -231,31 +236,33 @@ void adaptive_lzb::Impact::apply(const std::vector<Crossing>& crossings, double 
 // than its energy tolerance (the open ones are known to approach slower: they would have
 // joined).
 bool adaptive_lzb::Impact::settled(const State& y) {
-  member_velocities(y, velocity_at_);
-  for (std::size_t a = 0; a < active_; ++a) {
-    const Index j = members_[a];
-    if (velocity_at_[a] < -velocity_tolerance_ || energy(j, delta_of(a, y)) > energy_tolerance_[j])
+  member_velocities(y, segment_.velocity_at);
+  for (std::size_t a = 0; a < segment_.active; ++a) {
+    const Index j = segment_.members[a];
+    if (segment_.velocity_at[a] < -velocity_tolerance_ ||
+        energy(j, delta_of(a, y)) > law_.energy_tolerance[j])
       return false;
   }
   return true;
 }
 
 void adaptive_lzb::Impact::notify(double t, const State* y, ImpactObserver& observer) {
-  if (y) member_velocities(*y, velocity_at_);
+  if (y) member_velocities(*y, segment_.velocity_at);
   double impulse_sum = closed_impulse_sum_;
   if (y)
-    for (std::size_t a = 0; a < active_; ++a)
-      impulse_sum += (*y)[active_ + a] * impulse_scale_[members_[a]];
+    for (std::size_t a = 0; a < segment_.active; ++a)
+      impulse_sum += (*y)[segment_.active + a] * law_.impulse_scale[segment_.members[a]];
   sampler_->observe(
       observer, steps_, t, impulse_sum,
       [&](Index j, double& u, double& energy_now, double& force_now, double& impulse) {
-        const int p = y ? member_of_[j] : -1;
-        const bool active = p >= 0 && std::size_t(p) < active_;
-        const double delta = active ? delta_of(std::size_t(p), *y) : delta_[j];
-        u = p >= 0 ? velocity_at_[std::size_t(p)] : velocity_[j];
+        const int p = y ? contact_.member_of[j] : -1;
+        const bool active = p >= 0 && std::size_t(p) < segment_.active;
+        const double delta = active ? delta_of(std::size_t(p), *y) : contact_.delta[j];
+        u = p >= 0 ? segment_.velocity_at[std::size_t(p)] : contact_.velocity[j];
         energy_now = energy(j, delta);
         force_now = force(j, delta);
-        impulse = impulse_[j] + (active ? (*y)[active_ + std::size_t(p)] * impulse_scale_[j] : 0.0);
+        impulse = contact_.impulse[j] +
+                  (active ? (*y)[segment_.active + std::size_t(p)] * law_.impulse_scale[j] : 0.0);
       });
 }
 
@@ -264,27 +271,28 @@ void adaptive_lzb::Impact::sample_until(double t, ImpactObserver& observer) {
   if (sample_interval_ <= 0.0) return;
   for (double next = last_sample_ + sample_interval_; next <= t;
        next = last_sample_ + sample_interval_) {
-    ode_.state_at(next, y_at_);
-    notify(next, &y_at_, observer);
+    ode_.state_at(next, segment_.y_at);
+    notify(next, &segment_.y_at, observer);
     last_sample_ = next;
   }
 }
 
 void adaptive_lzb::Impact::finish(double t, ImpactResult& result) {
-  const std::size_t m = phase_.size();
-  result.impulse = Eigen::Map<const Eigen::VectorXd>(impulse_.data(), Index(m));
-  result.work = Eigen::Map<const Eigen::VectorXd>(work_.data(), Index(m));
+  const std::size_t m = contact_.phase.size();
+  result.impulse = Eigen::Map<const Eigen::VectorXd>(contact_.impulse.data(), Index(m));
+  result.work = Eigen::Map<const Eigen::VectorXd>(contact_.work.data(), Index(m));
   result.stored_energy = Eigen::VectorXd::Zero(Index(m));
   for (std::size_t j = 0; j < m; ++j) {
-    if (phase_[j] == Phase::open) continue;
-    result.stored_energy(Index(j)) = energy(Index(j), delta_[j]);
-    if (const double f = force(Index(j), delta_[j]); f > max_force_[j]) {
-      max_force_[j] = f;  // still in compression at the end
-      time_of_max_[j] = t;
+    if (contact_.phase[j] == Phase::open) continue;
+    result.stored_energy(Index(j)) = energy(Index(j), contact_.delta[j]);
+    if (const double f = force(Index(j), contact_.delta[j]); f > contact_.max_force[j]) {
+      contact_.max_force[j] = f;  // still in compression at the end
+      contact_.time_of_max[j] = t;
     }
   }
-  result.max_force = Eigen::Map<const Eigen::VectorXd>(max_force_.data(), Index(m));
-  result.time_of_max_force = Eigen::Map<const Eigen::VectorXd>(time_of_max_.data(), Index(m));
+  result.max_force = Eigen::Map<const Eigen::VectorXd>(contact_.max_force.data(), Index(m));
+  result.time_of_max_force =
+      Eigen::Map<const Eigen::VectorXd>(contact_.time_of_max.data(), Index(m));
   result.steps = steps_;
   result.contact_steps = contact_steps_;
   result.duration = t;
@@ -300,11 +308,12 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
   begin_segment();
   // the first step: a small share of the time the fastest contact takes to stop
   double first_step = 1.0;
-  for (std::size_t a = 0; a < active_; ++a)
-    if (u_minus(members_[a]) < 0.0)
-      first_step = std::min(first_step, delta_scale_[members_[a]] / -u_minus(members_[a]));
-  ode_.restart(y_, 0.0, 1e-3 * first_step);
-  if (observer) notify(0.0, &y_, *observer);
+  for (std::size_t a = 0; a < segment_.active; ++a)
+    if (u_minus(segment_.members[a]) < 0.0)
+      first_step = std::min(first_step,
+                            law_.delta_scale[segment_.members[a]] / -u_minus(segment_.members[a]));
+  ode_.restart(segment_.y, 0.0, 1e-3 * first_step);
+  if (observer) notify(0.0, &segment_.y, *observer);
   auto rhs = [this](const State& y, State& dydt, double) { derivative(y, dydt); };
 
   std::int64_t restarts = 0;
@@ -324,20 +333,20 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
     const double step_start = ode_.time();
     ode_.step(rhs);
     ++steps_;
-    contact_steps_ += std::int64_t(active_);
+    contact_steps_ += std::int64_t(segment_.active);
     const std::vector<Crossing> found = scan_events(
-        {.start = step_start, .end = ode_.time(), .samples = kSamplesPerStep + 1}, before_, after_,
-        [this](double time, Watched& v) { watch(time, v); },
+        {.start = step_start, .end = ode_.time(), .samples = kSamplesPerStep + 1}, segment_.before,
+        segment_.after, [this](double time, Watched& v) { watch(time, v); },
         [this](double t0, double t1, const Watched& b, const Watched& a, std::vector<Crossing>& f) {
           locate(t0, t1, b, a, f);
         });
     if (found.empty()) {
       t = ode_.time();
-      const bool changed = within_steps_ && settle_turns(step_start, t);
-      const State& y = changed ? y_settled_ : ode_.state();
+      const bool changed = within_.on && settle_turns(step_start, t);
+      const State& y = changed ? within_.y_settled : ode_.state();
       account_work(y);
       if (observer) sample_until(t, *observer);
-      const bool grow = within_steps_ && outgrown(y);
+      const bool grow = within_.on && outgrown(y);
       if (!grow && settled(y)) {
         end_segment(y);
         break;
@@ -346,22 +355,22 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
         // a state set back, or members to add: the same step goes on from here
         end_segment(y);
         begin_segment();
-        if (active_ == 0) break;
-        ode_.restart(y_, t, ode_.next_step());
+        if (segment_.active == 0) break;
+        ode_.restart(segment_.y, t, ode_.next_step());
         segment_start_ = t;
       }
       continue;
     }
     t = found.front().time;
     if (observer) sample_until(t, *observer);
-    ode_.state_at(t, y_at_);
-    account_work(y_at_);
-    end_segment(y_at_);
+    ode_.state_at(t, segment_.y_at);
+    account_work(segment_.y_at);
+    end_segment(segment_.y_at);
     apply(found, t);
     const double last_step = ode_.last_step();
     begin_segment();
-    if (active_ == 0) break;
-    ode_.restart(y_, t, last_step);
+    if (segment_.active == 0) break;
+    ode_.restart(segment_.y, t, last_step);
     segment_start_ = t;
     ++restarts;
   }

@@ -20,44 +20,44 @@ using namespace adaptive_lzb;  // the impact's phases, switches and constants
 // tolerance * V, then the ring of their neighbours through H, then the ring of those: a
 // contact of the first ring may load within a step, and its impulse then moves only members.
 void adaptive_lzb::Impact::begin_within_steps_segment() {
-  for (Index j : members_) member_of_[j] = -1;
-  std::vector<Index>& previous = previous_members_;
-  previous.swap(members_);
-  members_.clear();
-  ring_.clear();
+  for (Index j : segment_.members) contact_.member_of[j] = -1;
+  std::vector<Index>& previous = segment_.previous_members;
+  previous.swap(segment_.members);
+  segment_.members.clear();
+  within_.ring.clear();
   auto take = [&](Index j, unsigned char ring) {
-    member_of_[j] = int(members_.size());
-    members_.push_back(j);
-    ring_.push_back(ring);
+    contact_.member_of[j] = int(segment_.members.size());
+    segment_.members.push_back(j);
+    within_.ring.push_back(ring);
   };
-  auto core = [&](Index j) { return member_of_[j] < 0 && takes_part(j); };
-  if (previous.empty() && pending_.empty()) {  // the first segment
-    for (Index j = 0; j < Index(phase_.size()); ++j)
+  auto core = [&](Index j) { return contact_.member_of[j] < 0 && takes_part(j); };
+  if (previous.empty() && within_.pending.empty()) {  // the first segment
+    for (Index j = 0; j < Index(contact_.phase.size()); ++j)
       if (core(j)) take(j, 0);
   }
   for (Index j : previous)
     if (core(j)) take(j, 0);
-  for (Index j : pending_)
+  for (Index j : within_.pending)
     if (core(j)) take(j, 0);
-  pending_.clear();
+  within_.pending.clear();
   const int* start = H_->outerIndexPtr();
   const int* row = H_->innerIndexPtr();
   std::size_t ring_start = 0;
   for (unsigned char ring = 1; ring <= 2; ++ring) {
-    const std::size_t ring_end = members_.size();
+    const std::size_t ring_end = segment_.members.size();
     for (std::size_t a = ring_start; a < ring_end; ++a)
-      for (int k = start[members_[a]]; k < start[members_[a] + 1]; ++k)
-        if (member_of_[row[k]] < 0) take(row[k], ring);
+      for (int k = start[segment_.members[a]]; k < start[segment_.members[a] + 1]; ++k)
+        if (contact_.member_of[row[k]] < 0) take(row[k], ring);
     ring_start = ring_end;
   }
-  active_ = members_.size();
+  segment_.active = segment_.members.size();
   size_segment();
 }
 
 double adaptive_lzb::Impact::member_velocity_at(const DenseOutput::Weights& w,
                                                 std::size_t member) const {
-  return column_velocity(member,
-                         [&](std::size_t other) { return ode_.component_at(w, active_ + other); });
+  return column_velocity(
+      member, [&](std::size_t other) { return ode_.component_at(w, segment_.active + other); });
 }
 
 // Where a member's u_j changes sign within [t0, t1], narrowed on its own column of H: a peak
@@ -65,36 +65,36 @@ double adaptive_lzb::Impact::member_velocity_at(const DenseOutput::Weights& w,
 void adaptive_lzb::Impact::locate_turns(double t0, double t1, const Watched& before,
                                         const Watched& after) {
   const double resolution = 4.0 * DBL_EPSILON * t1;
-  for (std::size_t p = 0; p < members_.size(); ++p) {
+  for (std::size_t p = 0; p < segment_.members.size(); ++p) {
     const double u0 = before.velocity[p], u1 = after.velocity[p];
     const bool closing = u0 > 0.0 && u1 <= 0.0;
     if (!closing && !(u0 < 0.0 && u1 >= 0.0)) continue;
     const double sign = closing ? 1.0 : -1.0;  // > 0 before the turn
     auto q = [&](double t) { return sign * member_velocity_at(ode_.weights_at(t), p); };
-    turns_.push_back(
+    within_.turns.push_back(
         {p, narrow_crossing(q, t0, t1, sign * u0, sign * u1, resolution).upper, closing});
   }
 }
 
 bool adaptive_lzb::Impact::settle_turns(double t0, double t1) {
-  std::stable_sort(turns_.begin(), turns_.end(),
+  std::stable_sort(within_.turns.begin(), within_.turns.end(),
                    [](const Turn& a, const Turn& b) { return a.member < b.member; });
-  if (!turns_.empty()) y_settled_ = ode_.state();
+  if (!within_.turns.empty()) within_.y_settled = ode_.state();
   bool changed = false;
-  for (auto first = turns_.begin(); first != turns_.end();) {
-    const auto last = std::find_if(first, turns_.end(),
+  for (auto first = within_.turns.begin(); first != within_.turns.end();) {
+    const auto last = std::find_if(first, within_.turns.end(),
                                    [&](const Turn& turn) { return turn.member != first->member; });
     changed = settle_member(t0, t1, {first, last}) || changed;
     first = last;
   }
-  turns_.clear();
+  within_.turns.clear();
   return changed;
 }
 
 // One member's turns within the step [t0, t1], in time order. The step grew its delta_j at the
-// segment's rate, rate_ (from u_j's sign at its start), as if it had not turned. From the first
-// turn that changes its law (an inelastic contact's peak or re-loading, where 1 and 1/e^2 swap;
-// a separated contact approaching again, its delta_j set back to 0) to the step's end, the
+// segment's rate, segment_.rate (from u_j's sign at its start), as if it had not turned. From the
+// first turn that changes its law (an inelastic contact's peak or re-loading, where 1 and 1/e^2
+// swap; a separated contact approaching again, its delta_j set back to 0) to the step's end, the
 // contact is integrated again alone, to the same tolerance: its delta_j and P_j under its own
 // law, its u_j the step's plus what its new impulse changes, H_jj (P_j - P_j of the step); its
 // neighbours' impulses as the step found them. Corrected along the step's own velocity instead,
@@ -103,15 +103,16 @@ bool adaptive_lzb::Impact::settle_turns(double t0, double t1) {
 bool adaptive_lzb::Impact::settle_member(double t0, double t1, std::span<const Turn> turns) {
   namespace odeint = boost::numeric::odeint;
   const std::size_t p = turns.front().member;
-  const Index j = members_[p];
-  const double scale = delta_scale_[j];
+  const Index j = segment_.members[p];
+  const double scale = law_.delta_scale[j];
   using Local = std::array<double, 2>;  // delta_j / scale, P_j's increment / impulse scale
   auto alone = [&](const Local& x, Local& dxdt, double t) {
     const DenseOutput::Weights w = ode_.weights_at(t);
-    const double u = member_velocity_at(w, p) + self_mobility_[j] * impulse_scale_[j] *
-                                                    (x[1] - ode_.component_at(w, active_ + p));
-    dxdt[0] = -u * (u > 0.0 ? expansion_rate_[j] : 1.0) / scale;
-    dxdt[1] = force(j, std::max(x[0], 0.0) * scale) / impulse_scale_[j];
+    const double u =
+        member_velocity_at(w, p) + law_.self_mobility[j] * law_.impulse_scale[j] *
+                                       (x[1] - ode_.component_at(w, segment_.active + p));
+    dxdt[0] = -u * (u > 0.0 ? law_.expansion_rate[j] : 1.0) / scale;
+    dxdt[1] = force(j, std::max(x[0], 0.0) * scale) / law_.impulse_scale[j];
   };
   auto stepper = odeint::make_controlled<odeint::runge_kutta_dopri5<Local>>(local_tolerance_,
                                                                             local_tolerance_);
@@ -126,31 +127,31 @@ bool adaptive_lzb::Impact::settle_member(double t0, double t1, std::span<const T
     if (alone_since) advance(turn.time);
     double delta = alone_since ? x[0] : ode_.component_at(ode_.weights_at(turn.time), p);
     if (!turn.closing) {
-      if (const double f = force(j, std::max(delta, 0.0) * scale); f > max_force_[j]) {
-        max_force_[j] = f;
-        time_of_max_[j] = turn.time;
+      if (const double f = force(j, std::max(delta, 0.0) * scale); f > contact_.max_force[j]) {
+        contact_.max_force[j] = f;
+        contact_.time_of_max[j] = turn.time;
       }
-      if (alone_since || expansion_rate_[j] == rate_[p]) continue;  // the law goes on
+      if (alone_since || law_.expansion_rate[j] == segment_.rate[p]) continue;  // the law goes on
     } else if (delta < 0.0) {
       delta = 0.0;  // the clamp: delta_j is at its least at the turn and grows from 0 there
-    } else if (alone_since || rate_[p] == 1.0) {
+    } else if (alone_since || segment_.rate[p] == 1.0) {
       continue;  // re-loading at the rate the step (or the contact alone) already takes
     }
-    if (!alone_since) x[1] = ode_.component_at(ode_.weights_at(turn.time), active_ + p);
+    if (!alone_since) x[1] = ode_.component_at(ode_.weights_at(turn.time), segment_.active + p);
     x[0] = delta;
     from = turn.time;
     alone_since = true;
   }
   if (!alone_since) return false;
   advance(t1);
-  y_settled_[p] = x[0];
-  y_settled_[active_ + p] = x[1];
+  within_.y_settled[p] = x[0];
+  within_.y_settled[segment_.active + p] = x[1];
   return true;
 }
 
 bool adaptive_lzb::Impact::outgrown(const State& y) const {
-  for (std::size_t a = 0; a < active_; ++a)
-    if (ring_[a] == 2 && (y[a] > 0.0 || y[active_ + a] != 0.0)) return true;
+  for (std::size_t a = 0; a < segment_.active; ++a)
+    if (within_.ring[a] == 2 && (y[a] > 0.0 || y[segment_.active + a] != 0.0)) return true;
   return false;
 }
 
