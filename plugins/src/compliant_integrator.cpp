@@ -35,8 +35,8 @@ CompliantIntegrator::CompliantIntegrator(CompliantOptions options) : options_(op
 
 CompliantIntegrator::~CompliantIntegrator() = default;
 
-Index CompliantIntegrator::bodies_in_motion() const { return Index(state_->moving.size()); }
-Index CompliantIntegrator::most_bodies_in_motion() const { return state_->most_moving; }
+Index CompliantIntegrator::bodies_in_motion() const { return Index(state_->motion.moving.size()); }
+Index CompliantIntegrator::most_bodies_in_motion() const { return state_->motion.most_moving; }
 
 namespace {
 
@@ -74,8 +74,8 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
   s.join_overlap = options_.overlap_resolution;
   s.leave_overlap = 0.5 * s.join_overlap;
   system.gather_state(s.anchor_q, s.anchor_v);
-  s.q_all = s.anchor_q;
-  s.v_all = s.anchor_v;
+  s.scratch.q_all = s.anchor_q;
+  s.scratch.v_all = s.anchor_v;
 
   s.bodies.resize(std::size_t(system.system_count()));
   s.body_of_coordinate.resize(std::size_t(system.dof()));
@@ -93,8 +93,8 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
     }
   }
   s.contacts.resize(std::size_t(m));
-  s.watch_stamp.assign(std::size_t(m), 0);
-  s.gap_now.assign(std::size_t(m), 0.0);
+  s.motion.watch_stamp.assign(std::size_t(m), 0);
+  s.scratch.gap_now.assign(std::size_t(m), 0.0);
   max_compression_.assign(std::size_t(m), 0.0);
   history_.force.setZero(m);
   history_.max_force = history_.time_of_max_force = history_.impulse = history_.force;
@@ -133,35 +133,36 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
 // state y = (displacements, velocities, impulses since now).
 void CompliantIntegrator::restart() {
   State& s = *state_;
-  std::sort(s.moving.begin(), s.moving.end());
-  s.moving_coordinates = 0;
-  for (Index k : s.moving) {
-    s.body(k).slot = s.moving_coordinates;
-    s.moving_coordinates += s.body(k).size;
+  std::sort(s.motion.moving.begin(), s.motion.moving.end());
+  s.motion.coordinates = 0;
+  for (Index k : s.motion.moving) {
+    s.body(k).slot = s.motion.coordinates;
+    s.motion.coordinates += s.body(k).size;
   }
-  s.most_moving = std::max(s.most_moving, Index(s.moving.size()));
-  for (std::size_t a = 0; a < s.joined.size(); ++a) s.contact(s.joined[a]).slot = Index(a);
+  s.motion.most_moving = std::max(s.motion.most_moving, Index(s.motion.moving.size()));
+  for (std::size_t a = 0; a < s.motion.joined.size(); ++a)
+    s.contact(s.motion.joined[a]).slot = Index(a);
   // y = (displacements, velocities, impulses since now)
-  s.y.assign(2 * std::size_t(s.moving_coordinates) + s.joined.size(), 0.0);
-  for (Index k : s.moving) {
+  s.y.assign(2 * std::size_t(s.motion.coordinates) + s.motion.joined.size(), 0.0);
+  for (Index k : s.motion.moving) {
     const Body& b = s.body(k);
     for (Index i = 0; i < b.size; ++i)
-      s.y[std::size_t(s.moving_coordinates + b.slot + i)] = s.anchor_v(b.offset + i);
+      s.y[std::size_t(s.motion.coordinates + b.slot + i)] = s.anchor_v(b.offset + i);
   }
   // the contacts the integrated bodies touch
-  ++s.stamp;
-  s.watched.clear();
-  for (Index k : s.moving)
+  ++s.motion.stamp;
+  s.motion.watched.clear();
+  for (Index k : s.motion.moving)
     for (Index j : system_->interactions_of(k))
-      if (s.watch_stamp[std::size_t(j)] != s.stamp) {
-        s.watch_stamp[std::size_t(j)] = s.stamp;
-        s.watched.push_back(j);
+      if (s.motion.watch_stamp[std::size_t(j)] != s.motion.stamp) {
+        s.motion.watch_stamp[std::size_t(j)] = s.motion.stamp;
+        s.motion.watched.push_back(j);
       }
-  for (GapSamples* samples : {&s.before, &s.after}) {
-    samples->gap.resize(s.watched.size());
-    samples->rate.resize(s.watched.size());
+  for (GapSamples* samples : {&s.scratch.before, &s.scratch.after}) {
+    samples->gap.resize(s.motion.watched.size());
+    samples->rate.resize(s.motion.watched.size());
   }
-  s.generalized.resize(s.moving_coordinates);
+  s.scratch.generalized.resize(s.motion.coordinates);
   s.probe = s.y;
   start_accounting();
   // after an event, the step the integration last took
@@ -172,45 +173,45 @@ void CompliantIntegrator::restart() {
 
 void CompliantIntegrator::evaluate(double t, const double* y, double* dydt) {
   State& s = *state_;
-  const Index n = s.moving_coordinates;
-  s.generalized.setZero();
+  const Index n = s.motion.coordinates;
+  s.scratch.generalized.setZero();
   if (!s.linear) {  // every body moves: the whole configuration
-    for (Index k : s.moving) {
+    for (Index k : s.motion.moving) {
       const Body& b = s.body(k);
       for (Index i = 0; i < b.size; ++i) {
-        s.q_all(b.offset + i) = s.anchor_q(b.offset + i) + y[b.slot + i];
-        s.v_all(b.offset + i) = y[n + b.slot + i];
+        s.scratch.q_all(b.offset + i) = s.anchor_q(b.offset + i) + y[b.slot + i];
+        s.scratch.v_all(b.offset + i) = y[n + b.slot + i];
       }
     }
   }
-  for (Index j : s.joined) {
+  for (Index j : s.motion.joined) {
     const Contact& c = s.contact(j);
     double gap, rate;
     if (s.linear) {
       linear_gap(s, c, t, y, gap, rate);
     } else {
-      gap = system_->gap(j, s.q_all);
+      gap = system_->gap(j, s.scratch.q_all);
     }
     const double f = contact_force(std::size_t(j), -gap);
     dydt[2 * n + c.slot] = f;
     if (f == 0.0) continue;
     if (s.linear) {
       for (const JacobianEntry& entry : c.entries)
-        s.generalized(s.body(entry.body).slot + entry.local) += entry.value * f;
+        s.scratch.generalized(s.body(entry.body).slot + entry.local) += entry.value * f;
     } else {
-      system_->for_each_jacobian_entry(j, s.q_all, [&](Index coordinate, double value) {
+      system_->for_each_jacobian_entry(j, s.scratch.q_all, [&](Index coordinate, double value) {
         const Body& b = s.body(s.body_of_coordinate[std::size_t(coordinate)]);
-        s.generalized(b.slot + s.local_of_coordinate[std::size_t(coordinate)]) += value * f;
+        s.scratch.generalized(b.slot + s.local_of_coordinate[std::size_t(coordinate)]) += value * f;
       });
     }
   }
-  for (Index k : s.moving) {
+  for (Index k : s.motion.moving) {
     Body& b = s.body(k);
     b.q = s.anchor_q.segment(b.offset, b.size) + Eigen::Map<const VectorXd>(y + b.slot, b.size);
     b.v = Eigen::Map<const VectorXd>(y + n + b.slot, b.size);
     b.refresh(system_->system(k), b.q);
     Eigen::Map<VectorXd> acceleration(dydt + n + b.slot, b.size);
-    acceleration = s.generalized.segment(b.slot, b.size);
+    acceleration = s.scratch.generalized.segment(b.slot, b.size);
     if (b.has_force) {
       system_->system(k).force(t, b.q, b.v, b.force);
       acceleration += b.force;
@@ -227,7 +228,7 @@ kernel::StepReport CompliantIntegrator::advance(double target) {
   if (target <= time_) return report;
   bool reached = false;
   while (true) {
-    if (s.moving.empty()) {  // every body in free flight: up to the next computed join
+    if (s.motion.moving.empty()) {  // every body in free flight: up to the next computed join
       Event event;
       if (next_predicted_join(time_, target, event)) {
         time_ = event.time;
@@ -293,11 +294,11 @@ void CompliantIntegrator::measure(double t, std::span<const Index> contacts,
   State& s = *state_;
   s.dense->state_at(t, s.probe);
   if (!s.linear) {
-    for (Index k : s.moving) {
+    for (Index k : s.motion.moving) {
       const Body& body = s.body(k);
       for (Index i = 0; i < body.size; ++i) {
-        s.q_all(body.offset + i) = s.anchor_q(body.offset + i) + s.probe[body.slot + i];
-        s.v_all(body.offset + i) = s.probe[s.moving_coordinates + body.slot + i];
+        s.scratch.q_all(body.offset + i) = s.anchor_q(body.offset + i) + s.probe[body.slot + i];
+        s.scratch.v_all(body.offset + i) = s.probe[s.motion.coordinates + body.slot + i];
       }
     }
   }
@@ -306,8 +307,8 @@ void CompliantIntegrator::measure(double t, std::span<const Index> contacts,
     if (s.linear) {
       linear_gap(s, s.contact(j), t, s.probe.data(), gap[w], rate[w]);
     } else {
-      gap[w] = system_->gap(j, s.q_all);
-      rate[w] = system_->velocity(j, s.q_all, s.v_all);
+      gap[w] = system_->gap(j, s.scratch.q_all);
+      rate[w] = system_->velocity(j, s.scratch.q_all, s.scratch.v_all);
     }
   }
 }
@@ -316,16 +317,16 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
   State& s = *state_;
   const numerics::Overlaps overlaps{.join = s.join_overlap, .leave = s.leave_overlap};
   auto watch = [&](double t, GapSamples& samples) {
-    measure(t, s.watched, samples.gap, samples.rate);
+    measure(t, s.motion.watched, samples.gap, samples.rate);
   };
-  s.event_gap.resize(1);
-  s.event_rate.resize(1);
+  s.scratch.event_gap.resize(1);
+  s.scratch.event_rate.resize(1);
   // each watched contact's event over [t0, t1] (numerics::classify), located to the event
   // tolerance
   auto locate = [&](double t0, double t1, const GapSamples& before, const GapSamples& after,
                     std::vector<Crossing>& found) {
-    for (std::size_t w = 0; w < s.watched.size(); ++w) {
-      const Index j = s.watched[w];
+    for (std::size_t w = 0; w < s.motion.watched.size(); ++w) {
+      const Index j = s.motion.watched[w];
       numerics::ContactWatch watched;
       watched.joined = s.contact(j).joined;
       watched.may_freeze = options_.frozen_gaps && s.contact(j).has_closed;
@@ -345,15 +346,15 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
       const Index one[] = {j};
       const numerics::Bracket bracket = numerics::narrow_crossing(
           [&](double t) {
-            measure(t, one, s.event_gap, s.event_rate);
-            return value(s.event_gap[0], s.event_rate[0]);
+            measure(t, one, s.scratch.event_gap, s.scratch.event_rate);
+            return value(s.scratch.event_gap[0], s.scratch.event_rate[0]);
           },
           t0, t1, value(watched.gap_before, watched.rate_before),
           value(watched.gap_after, watched.rate_after), options_.ode.event_tolerance);
       // the event just handled, seen again through round-off of the restarted state; another
       // contact crossing at the same time (a symmetric strike loads two contacts at once) is
       // an event of its own
-      if (j == s.last_event && bracket.upper <= a + options_.ode.event_tolerance) continue;
+      if (j == s.motion.last_event && bracket.upper <= a + options_.ode.event_tolerance) continue;
       found.push_back({long(j), int(crossed.kind), bracket.upper});
     }
   };
@@ -362,7 +363,7 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
                              .end = b,
                              .samples = options_.ode.samples_per_step,
                              .tolerance = options_.ode.event_tolerance},
-                            s.before, s.after, watch, locate);
+                            s.scratch.before, s.scratch.after, watch, locate);
   double earliest = kNever;
   for (const Crossing& crossing : found)
     if (crossing.time < earliest) {
@@ -377,20 +378,20 @@ void CompliantIntegrator::end_segment(double end) {
   s.dense->state_at(end, s.y);
   time_ = end;
   account_work(end);
-  for (Index j : s.joined) {
+  for (Index j : s.motion.joined) {
     // a contact's force peaks where it turns, and a located turn ends a segment
     double gap, rate;
     if (s.linear) {
       linear_gap(s, s.contact(j), time_, s.y.data(), gap, rate);
     } else {
-      for (Index k : s.moving) {
+      for (Index k : s.motion.moving) {
         const Body& body = s.body(k);
         for (Index i = 0; i < body.size; ++i)
-          s.q_all(body.offset + i) = s.anchor_q(body.offset + i) + s.y[body.slot + i];
+          s.scratch.q_all(body.offset + i) = s.anchor_q(body.offset + i) + s.y[body.slot + i];
       }
-      gap = system_->gap(j, s.q_all);
+      gap = system_->gap(j, s.scratch.q_all);
     }
-    s.gap_now[std::size_t(j)] = gap;
+    s.scratch.gap_now[std::size_t(j)] = gap;
     const double f = contact_force(std::size_t(j), -gap);
     history_.force(j) = f;
     if (f > history_.max_force(j)) {
@@ -402,13 +403,13 @@ void CompliantIntegrator::end_segment(double end) {
 
 bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& report) {
   State& s = *state_;
-  s.last_event = event.contact;
+  s.motion.last_event = event.contact;
   const std::size_t i = std::size_t(event.contact);
   if (event.kind == ContactEvent::turning) {
     // e < 1 unloads along another curve from here; for e = 1 the restart keeps the step
     // from stepping over the peak (the separation speed to 1e-9 at the default tolerances)
     commit_motion();
-    max_compression_[i] = std::max(max_compression_[i], -s.gap_now[i]);
+    max_compression_[i] = std::max(max_compression_[i], -s.scratch.gap_now[i]);
     restart();
     return false;
   }
@@ -425,7 +426,7 @@ bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& r
   commit_motion();
   if (event.kind == ContactEvent::joining) {
     if (s.contact(event.contact).predicted) {  // the computed join is used up
-      s.predictions.pop();
+      s.motion.predictions.pop();
       forget_prediction(event.contact);
     }
     if (!collide_instantly(event.contact)) join(event.contact);
@@ -455,13 +456,13 @@ void CompliantIntegrator::write_back(Index k) {
 
 void CompliantIntegrator::finish_advance(bool reached_target) {
   State& s = *state_;
-  const Index n = s.moving_coordinates;
+  const Index n = s.motion.coordinates;
   if (reached_target) {
     for (Index k = 0; k < Index(s.bodies.size()); ++k) write_back(k);
   } else {
-    for (Index k : s.moving) write_back(k);
+    for (Index k : s.motion.moving) write_back(k);
   }
-  for (Index j : s.joined)
+  for (Index j : s.motion.joined)
     history_.impulse(j) = s.contact(j).impulse + s.y[std::size_t(2 * n + s.contact(j).slot)];
   update_stored_energy();
   history_.all_open = contacts_open();
@@ -469,13 +470,13 @@ void CompliantIntegrator::finish_advance(bool reached_target) {
 
 bool CompliantIntegrator::contacts_open() {
   State& s = *state_;
-  if (!s.joined.empty() || s.pending_predictions > 0) return false;
+  if (!s.motion.joined.empty() || s.motion.pending_predictions > 0) return false;
   // the integrated bodies' contacts: none touching, none approaching
-  if (s.watched.empty()) return true;
-  s.event_gap.resize(s.watched.size());
-  s.event_rate.resize(s.watched.size());
-  for (std::size_t w = 0; w < s.watched.size(); ++w) {
-    const Index j = s.watched[w];
+  if (s.motion.watched.empty()) return true;
+  s.scratch.event_gap.resize(s.motion.watched.size());
+  s.scratch.event_rate.resize(s.motion.watched.size());
+  for (std::size_t w = 0; w < s.motion.watched.size(); ++w) {
+    const Index j = s.motion.watched[w];
     double gap, rate;
     if (s.linear) {
       linear_gap(s, s.contact(j), time_, s.y.data(), gap, rate);

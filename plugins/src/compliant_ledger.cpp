@@ -30,22 +30,22 @@ double CompliantIntegrator::contact_force(std::size_t j, double delta) const {
 void CompliantIntegrator::start_accounting() {
   State& s = *state_;
   if (!s.linear) return;
-  const std::size_t impulses = 2 * std::size_t(s.moving_coordinates);
-  for (Index j : s.joined) {
+  const std::size_t impulses = 2 * std::size_t(s.motion.coordinates);
+  for (Index j : s.motion.joined) {
     Contact& c = s.contact(j);
     double gap;
     linear_gap(s, c, time_, s.y.data(), gap, c.accounted_rate);
     c.accounted_impulse = s.y[impulses + std::size_t(c.slot)];
   }
-  s.accounted_velocity.assign(s.y.begin() + s.moving_coordinates, s.y.begin() + impulses);
-  s.accounted_time = time_;
+  s.ledger.accounted_velocity.assign(s.y.begin() + s.motion.coordinates, s.y.begin() + impulses);
+  s.ledger.accounted_time = time_;
 }
 
 void CompliantIntegrator::account_work(double t) {
   State& s = *state_;
   if (!s.linear) return;
-  const Index n = s.moving_coordinates;
-  for (Index j : s.joined) {
+  const Index n = s.motion.coordinates;
+  for (Index j : s.motion.joined) {
     Contact& c = s.contact(j);
     double gap, rate;
     linear_gap(s, c, t, s.y.data(), gap, rate);
@@ -54,25 +54,26 @@ void CompliantIntegrator::account_work(double t) {
     c.accounted_rate = rate;
     c.accounted_impulse = impulse;
   }
-  for (Index k : s.moving) {
+  for (Index k : s.motion.moving) {
     Body& b = s.body(k);
     if (!b.has_force) continue;
     b.q = s.anchor_q.segment(b.offset, b.size) + Eigen::Map<const VectorXd>(&s.y[b.slot], b.size);
     b.v = Eigen::Map<const VectorXd>(&s.y[n + b.slot], b.size);
     system_->system(k).force(t, b.q, b.v, b.force);
     for (Index i = 0; i < b.size; ++i) {
-      double& before = s.accounted_velocity[std::size_t(b.slot + i)];
-      history_.work_of_forces += 0.5 * (before + b.v(i)) * b.force(i) * (t - s.accounted_time);
+      double& before = s.ledger.accounted_velocity[std::size_t(b.slot + i)];
+      history_.work_of_forces +=
+          0.5 * (before + b.v(i)) * b.force(i) * (t - s.ledger.accounted_time);
       before = b.v(i);
     }
   }
-  s.accounted_time = t;
+  s.ledger.accounted_time = t;
 }
 
 void CompliantIntegrator::update_stored_energy() {
   State& s = *state_;
   history_.stored_energy.setZero();
-  for (Index j : s.joined) {
+  for (Index j : s.motion.joined) {
     double gap = s.contact(j).anchor_gap, rate;
     if (s.linear) linear_gap(s, s.contact(j), time_, s.y.data(), gap, rate);
     history_.stored_energy(j) = contact_energy(std::size_t(j), -gap);

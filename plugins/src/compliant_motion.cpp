@@ -16,12 +16,12 @@ using kernel::Index;
 
 void CompliantIntegrator::commit_motion() {
   State& s = *state_;
-  for (Index k : s.moving) {
+  for (Index k : s.motion.moving) {
     Body& b = s.body(k);
     for (Index i = 0; i < b.size; ++i) {
       const double d = s.y[std::size_t(b.slot + i)];
       s.anchor_q(b.offset + i) += d;
-      s.anchor_v(b.offset + i) = s.y[std::size_t(s.moving_coordinates + b.slot + i)];
+      s.anchor_v(b.offset + i) = s.y[std::size_t(s.motion.coordinates + b.slot + i)];
       if (!s.linear || d == 0.0) continue;
       for (Index j : system_->interactions_of(k))
         for (const JacobianEntry& entry : s.contact(j).entries)
@@ -29,8 +29,8 @@ void CompliantIntegrator::commit_motion() {
     }
     b.anchor_time = time_;
   }
-  const std::size_t impulses = 2 * std::size_t(s.moving_coordinates);
-  for (Index j : s.joined) {
+  const std::size_t impulses = 2 * std::size_t(s.motion.coordinates);
+  for (Index j : s.motion.joined) {
     Contact& c = s.contact(j);
     c.impulse += s.y[impulses + std::size_t(c.slot)];
     history_.impulse(j) = c.impulse;
@@ -43,7 +43,7 @@ void CompliantIntegrator::set_in_motion(Index k) {
   if (b.in_motion) return;
   fold_flight(k);
   b.in_motion = true;
-  s.moving.push_back(k);
+  s.motion.moving.push_back(k);
   for (Index j : system_->interactions_of(k)) forget_prediction(j);
 }
 
@@ -68,7 +68,7 @@ void CompliantIntegrator::set_free(Index k) {
   Body& b = s.body(k);
   if (!b.in_motion || !b.can_fly || b.loaded_contacts > 0) return;
   b.in_motion = false;
-  std::erase(s.moving, k);
+  std::erase(s.motion.moving, k);
   for (Index j : system_->interactions_of(k)) predict_join(j);
 }
 
@@ -77,7 +77,7 @@ void CompliantIntegrator::join(Index j) {
   Contact& c = s.contact(j);
   c.joined = true;
   c.has_closed = true;
-  s.joined.push_back(j);
+  s.motion.joined.push_back(j);
   forget_prediction(j);
   for (Index k : {system_->first_system(j), system_->second_system(j)})
     if (k >= 0) {
@@ -89,7 +89,7 @@ void CompliantIntegrator::join(Index j) {
 void CompliantIntegrator::leave(Index j) {
   State& s = *state_;
   s.contact(j).joined = false;
-  std::erase(s.joined, j);
+  std::erase(s.motion.joined, j);
   max_compression_[std::size_t(j)] = 0.0;  // the contact forgets
   history_.force(j) = 0.0;
   for (Index k : {system_->first_system(j), system_->second_system(j)})
@@ -119,9 +119,9 @@ void CompliantIntegrator::predict_join(Index j) {
     gap = 0.0;
   }
   const double time = time_ + std::max(0.0, (gap + s.join_overlap) / -rate);
-  s.predictions.push({time, j, c.version});
+  s.motion.predictions.push({time, j, c.version});
   c.predicted = true;
-  ++s.pending_predictions;
+  ++s.motion.pending_predictions;
 }
 
 void CompliantIntegrator::forget_prediction(Index j) {
@@ -130,7 +130,7 @@ void CompliantIntegrator::forget_prediction(Index j) {
   ++c.version;
   if (!c.predicted) return;
   c.predicted = false;
-  --s.pending_predictions;
+  --s.motion.pending_predictions;
 }
 
 // Behind a wave, bodies left at rest against each other approach with speeds of the order of
@@ -182,12 +182,12 @@ bool CompliantIntegrator::collide_instantly(Index j) {
 // (of contacts whose motion changed since) dropped.
 bool CompliantIntegrator::next_predicted_join(double a, double b, Event& event) {
   State& s = *state_;
-  while (!s.predictions.empty() &&
-         s.predictions.top().version != s.contact(s.predictions.top().contact).version)
-    s.predictions.pop();
-  if (s.predictions.empty() || s.predictions.top().time > b) return false;
-  event = {s.predictions.top().contact, numerics::ContactEvent::joining,
-           std::max(a, s.predictions.top().time)};
+  while (!s.motion.predictions.empty() && s.motion.predictions.top().version !=
+                                              s.contact(s.motion.predictions.top().contact).version)
+    s.motion.predictions.pop();
+  if (s.motion.predictions.empty() || s.motion.predictions.top().time > b) return false;
+  event = {s.motion.predictions.top().contact, numerics::ContactEvent::joining,
+           std::max(a, s.motion.predictions.top().time)};
   return true;
 }
 

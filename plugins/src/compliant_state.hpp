@@ -92,27 +92,38 @@ struct State {
   std::vector<compliant::Contact> contacts;
   VectorXd anchor_q, anchor_v;  // global coordinates
   std::vector<Index> body_of_coordinate, local_of_coordinate;
-  // the motion: its bodies, its joined contacts, the contacts watched for events
-  std::vector<Index> moving, joined, watched;
-  Index moving_coordinates = 0, most_moving = 0;
-  std::vector<std::uint32_t> watch_stamp;
-  std::uint32_t stamp = 0;
-  std::priority_queue<compliant::PredictedJoin, std::vector<compliant::PredictedJoin>,
-                      std::greater<>>
-      predictions;
-  Index pending_predictions = 0;
-  // the contact of the event handled last: its crossing, seen again at the start of the next
-  // segment through round-off of the restarted state, is not an event
-  Index last_event = -1;
-  // right-hand side workspace
-  VectorXd generalized;
-  VectorXd q_all, v_all;  // nonlinear relations: every coordinate
-  compliant::GapSamples before, after;
-  std::vector<double> event_gap, event_rate;
-  std::vector<double> gap_now;  // m, of the joined contacts at the end of the last segment
-  // the moving coordinates' velocities and the time where the forces' work was last accounted
-  std::vector<double> accounted_velocity;
-  double accounted_time = 0.0;
+  // The motion: its bodies, its joined contacts, the contacts watched for events, and the joins
+  // predicted in closed form between bodies in free flight.
+  struct Motion {
+    std::vector<Index> moving, joined, watched;
+    Index coordinates = 0, most_moving = 0;  // of the moving bodies; the most bodies at once
+    std::vector<std::uint32_t> watch_stamp;
+    std::uint32_t stamp = 0;
+    std::priority_queue<compliant::PredictedJoin, std::vector<compliant::PredictedJoin>,
+                        std::greater<>>
+        predictions;
+    Index pending_predictions = 0;
+    // the contact of the event handled last: its crossing, seen again at the start of the next
+    // segment through round-off of the restarted state, is not an event
+    Index last_event = -1;
+  };
+  // The right-hand side's and the event search's workspace.
+  struct Scratch {
+    VectorXd generalized;
+    VectorXd q_all, v_all;  // nonlinear relations: every coordinate
+    compliant::GapSamples before, after;
+    std::vector<double> event_gap, event_rate;
+    std::vector<double> gap_now;  // m, of the joined contacts at the end of the last segment
+  };
+  // The forces' work: the moving coordinates' velocities and the time where it was last
+  // accounted.
+  struct Ledger {
+    std::vector<double> accounted_velocity;
+    double accounted_time = 0.0;
+  };
+  Motion motion;
+  Scratch scratch;
+  Ledger ledger;
 
   compliant::Body& body(Index k) { return bodies[std::size_t(k)]; }
   compliant::Contact& contact(Index j) { return contacts[std::size_t(j)]; }
@@ -123,7 +134,7 @@ struct State {
     return b.in_motion ? state[b.slot + local] : anchor_v(b.offset + local) * (t - b.anchor_time);
   }
   double velocity(const compliant::Body& b, Index local, const double* state) const {
-    return b.in_motion ? state[moving_coordinates + b.slot + local] : anchor_v(b.offset + local);
+    return b.in_motion ? state[motion.coordinates + b.slot + local] : anchor_v(b.offset + local);
   }
 };
 

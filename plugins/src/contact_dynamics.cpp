@@ -17,7 +17,7 @@ void ContactDynamics::initialize(const kernel::NonSmoothDynamicalSystem& system)
   dense_ = system.dof() <= kDenseUpTo;
   free_acceleration_.setZero(system.dof());
   set_.clear();
-  set_valid_ = factor_valid_ = inverse_mass_valid_ = pattern_analyzed_ = false;
+  set_valid_ = factor_valid_ = inverse_mass_valid_ = sparse_.pattern_analyzed = false;
 }
 
 void ContactDynamics::factorize_masses(const VectorXd& q) {
@@ -45,9 +45,9 @@ void ContactDynamics::assemble_inverse_mass() {
           entries.emplace_back(block.offset + r, block.offset + c, inverse(r, c));
     }
   }
-  inverse_mass_.resize(system_->dof(), system_->dof());
-  inverse_mass_.setFromTriplets(entries.begin(), entries.end());
-  if (dense_) inverse_mass_dense_ = MatrixXd(inverse_mass_);
+  sparse_.inverse_mass.resize(system_->dof(), system_->dof());
+  sparse_.inverse_mass.setFromTriplets(entries.begin(), entries.end());
+  if (dense_) small_.inverse_mass = MatrixXd(sparse_.inverse_mass);
   inverse_mass_valid_ = true;
 }
 
@@ -67,29 +67,32 @@ void ContactDynamics::assemble_set(const VectorXd& q, std::span<const Index> set
 }
 
 void ContactDynamics::assemble_dense_set(const VectorXd& q, std::span<const Index> set) {
-  W_dense_.setZero(system_->dof(), Index(set.size()));
+  small_.W.setZero(system_->dof(), Index(set.size()));
   for (std::size_t k = 0; k < set.size(); ++k)
     system_->for_each_jacobian_entry(
-        set[k], q, [&](Index row, double value) { W_dense_(row, Index(k)) += value; });
-  mobility_dense_.noalias() = inverse_mass_dense_ * W_dense_;
-  H_dense_.noalias() = W_dense_.transpose() * mobility_dense_;
+        set[k], q, [&](Index row, double value) { small_.W(row, Index(k)) += value; });
+  small_.mobility.noalias() = small_.inverse_mass * small_.W;
+  small_.H.noalias() = small_.W.transpose() * small_.mobility;
 }
 
 void ContactDynamics::assemble_sparse_set(const VectorXd& q, std::span<const Index> set) {
-  W_ = system_->jacobian_matrix(set, q);
-  mobility_ = inverse_mass_ * W_;
-  H_ = W_.transpose() * mobility_;
+  sparse_.W = system_->jacobian_matrix(set, q);
+  sparse_.mobility = sparse_.inverse_mass * sparse_.W;
+  sparse_.H = sparse_.W.transpose() * sparse_.mobility;
   // A new set, or one whose geometry moved: H keeps its sparsity pattern in the second case,
   // and then only its numerical factorization is redone.
-  const bool same_pattern = pattern_analyzed_ &&
-                            std::equal(H_.outerIndexPtr(), H_.outerIndexPtr() + H_.outerSize() + 1,
-                                       analyzed_outer_.begin(), analyzed_outer_.end()) &&
-                            std::equal(H_.innerIndexPtr(), H_.innerIndexPtr() + H_.nonZeros(),
-                                       analyzed_inner_.begin(), analyzed_inner_.end());
+  const bool same_pattern =
+      sparse_.pattern_analyzed &&
+      std::equal(sparse_.H.outerIndexPtr(), sparse_.H.outerIndexPtr() + sparse_.H.outerSize() + 1,
+                 sparse_.analyzed_outer.begin(), sparse_.analyzed_outer.end()) &&
+      std::equal(sparse_.H.innerIndexPtr(), sparse_.H.innerIndexPtr() + sparse_.H.nonZeros(),
+                 sparse_.analyzed_inner.begin(), sparse_.analyzed_inner.end());
   if (!same_pattern) {
-    analyzed_outer_.assign(H_.outerIndexPtr(), H_.outerIndexPtr() + H_.outerSize() + 1);
-    analyzed_inner_.assign(H_.innerIndexPtr(), H_.innerIndexPtr() + H_.nonZeros());
-    pattern_analyzed_ = false;
+    sparse_.analyzed_outer.assign(sparse_.H.outerIndexPtr(),
+                                  sparse_.H.outerIndexPtr() + sparse_.H.outerSize() + 1);
+    sparse_.analyzed_inner.assign(sparse_.H.innerIndexPtr(),
+                                  sparse_.H.innerIndexPtr() + sparse_.H.nonZeros());
+    sparse_.pattern_analyzed = false;
   }
 }
 
@@ -112,9 +115,9 @@ void ContactDynamics::evaluate(double t, const VectorXd& q, const VectorXd& v,
   if (set.empty()) return;
   assemble_set(q, set);
   if (dense_)
-    b_.noalias() = W_dense_.transpose() * free_acceleration_;
+    b_.noalias() = small_.W.transpose() * free_acceleration_;
   else
-    b_.noalias() = W_.transpose() * free_acceleration_;
+    b_.noalias() = sparse_.W.transpose() * free_acceleration_;
   for (std::size_t k = 0; k < set.size(); ++k) b_(Index(k)) += system_->jacobian_rate(set[k], q, v);
 }
 
@@ -128,13 +131,13 @@ const VectorXd& ContactDynamics::bilateral_force() {
 void ContactDynamics::factorize_H() {
   VectorXd pivots;
   if (dense_) {
-    ldlt_dense_.compute(H_dense_);
-    pivots = ldlt_dense_.vectorD();
+    small_.ldlt.compute(small_.H);
+    pivots = small_.ldlt.vectorD();
   } else {
-    if (!pattern_analyzed_) ldlt_.analyzePattern(H_);
-    pattern_analyzed_ = true;
-    ldlt_.factorize(H_);
-    if (ldlt_.info() == Eigen::Success) pivots = ldlt_.vectorD();
+    if (!sparse_.pattern_analyzed) sparse_.ldlt.analyzePattern(sparse_.H);
+    sparse_.pattern_analyzed = true;
+    sparse_.ldlt.factorize(sparse_.H);
+    if (sparse_.ldlt.info() == Eigen::Success) pivots = sparse_.ldlt.vectorD();
   }
   if (pivots.size() == 0 || !(pivots.cwiseAbs().minCoeff() > 1e-14 * pivots.cwiseAbs().maxCoeff()))
     throw Error(
@@ -146,9 +149,9 @@ void ContactDynamics::factorize_H() {
 const VectorXd& ContactDynamics::solve(const VectorXd& rhs) {
   if (!factor_valid_) factorize_H();
   if (dense_)
-    lambda_ = ldlt_dense_.solve(rhs);
+    lambda_ = small_.ldlt.solve(rhs);
   else
-    lambda_ = ldlt_.solve(rhs);
+    lambda_ = sparse_.ldlt.solve(rhs);
   return lambda_;
 }
 
@@ -159,9 +162,9 @@ void ContactDynamics::acceleration(const VectorXd& lambda, VectorXd& out) const 
 
 void ContactDynamics::add_mobility_times(const VectorXd& x, VectorXd& out) const {
   if (dense_)
-    out.noalias() += mobility_dense_ * x;
+    out.noalias() += small_.mobility * x;
   else
-    out += mobility_ * x;
+    out += sparse_.mobility * x;
 }
 
 void ContactDynamics::apply_inverse_mass(VectorXd& x) const {

@@ -32,7 +32,7 @@ class ContactDynamics {
   const VectorXd& free_acceleration() const { return free_acceleration_; }
   const VectorXd& b() const { return b_; }
   // H = W_S^T M^-1 W_S for the set last evaluated, dense (the LCP solvers' input).
-  MatrixXd H() const { return dense_ ? H_dense_ : MatrixXd(H_); }
+  MatrixXd H() const { return dense_ ? small_.H : MatrixXd(sparse_.H); }
   // The forces that keep every contact of S closed (g''_S = 0): H lambda = -b.
   const VectorXd& bilateral_force();
   // Solves H x = rhs for the set last evaluated (LDL^T, kept while H is).
@@ -61,13 +61,20 @@ class ContactDynamics {
   VectorXd free_acceleration_, b_, lambda_;
   std::vector<Index> set_;  // the set H was assembled for
   bool set_valid_ = false, factor_valid_ = false, inverse_mass_valid_ = false;
-  // The sparsity pattern of H that ldlt_ was analyzed (ordered) for.
-  bool pattern_analyzed_ = false;
-  std::vector<int> analyzed_outer_, analyzed_inner_;
-  Eigen::SparseMatrix<double> W_, inverse_mass_, mobility_, H_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
-  MatrixXd inverse_mass_dense_, W_dense_, mobility_dense_, H_dense_;
-  Eigen::LDLT<MatrixXd> ldlt_dense_;
+  // M^-1, W_S, M^-1 W_S, H and its factorization, sparse or (dense_) dense
+  struct SparseMatrices {
+    Eigen::SparseMatrix<double> W, inverse_mass, mobility, H;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    // the sparsity pattern of H that ldlt was analyzed (ordered) for
+    bool pattern_analyzed = false;
+    std::vector<int> analyzed_outer, analyzed_inner;
+  };
+  struct DenseMatrices {
+    MatrixXd inverse_mass, W, mobility, H;
+    Eigen::LDLT<MatrixXd> ldlt;
+  };
+  SparseMatrices sparse_;
+  DenseMatrices small_;
 };
 
 }  // namespace mimpact::plugins
