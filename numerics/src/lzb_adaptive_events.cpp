@@ -50,21 +50,6 @@ void adaptive_lzb::Impact::watch(double t, Watched& values) {
     values.delta[a] = (*y)[a] * law_.delta_scale[segment_.members[a]];
 }
 
-// The quantity that is > 0 before the switch `kind` of a member and <= 0 once it happened.
-double adaptive_lzb::Impact::watched_value(std::size_t member, int kind,
-                                           const Watched& values) const {
-  switch (kind) {
-    case join:
-      return values.velocity[member] + velocity_tolerance_;
-    case compression_end:
-      return -values.velocity[member];
-    case reload:
-      return values.velocity[member];
-    default:  // release
-      return values.delta[member] - contact_.release_level[segment_.members[member]];
-  }
-}
-
 // The switches of [t0, t1], each narrowed (TOMS 748) to a few ulp of t on the dense output.
 // Every member is on the near side of its switches when a segment starts, up to rounding.
 void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, const Watched& after,

@@ -212,4 +212,19 @@ inline void Impact::member_velocities(const State& y, std::vector<double>& veloc
   }
 }
 
+// The quantity that is > 0 before the switch `kind` of a member and <= 0 once it happened (read
+// for every member at both ends of every step: inline)
+inline double Impact::watched_value(std::size_t member, int kind, const Watched& values) const {
+  switch (kind) {
+    case join:
+      return values.velocity[member] + velocity_tolerance_;
+    case compression_end:
+      return -values.velocity[member];
+    case reload:
+      return values.velocity[member];
+    default:  // release
+      return values.delta[member] - contact_.release_level[segment_.members[member]];
+  }
+}
+
 }  // namespace mimpact::numerics::adaptive_lzb
