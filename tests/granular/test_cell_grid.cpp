@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -41,6 +42,20 @@ TEST(CellGrid, FindsEveryBodyWithinTheReachAsBruteForceDoes) {
       }
       EXPECT_GT(found_within, points.size());  // the search had neighbours to find
     }
+  }
+}
+
+// A reach of far more cells than the grid holds (a striker 1e12 times a bead's size, or an
+// infinite reach) hands every body at once, without counting the empty cells around.
+TEST(CellGrid, AReachBeyondTheOccupiedCellsHandsEveryBody) {
+  CellGrid grid(1e-3, 3);
+  for (std::int32_t k = 0; k < 50; ++k) grid.insert(k, Eigen::Vector3d(1e-3 * k, 0.0, 0.0));
+  for (double reach : {1e9, 1e300, double(INFINITY)}) {
+    std::vector<std::int32_t> found;
+    grid.visit_near(Eigen::Vector3d::Zero(), reach, [&](std::int32_t k) { found.push_back(k); });
+    std::sort(found.begin(), found.end());
+    ASSERT_EQ(found.size(), 50u) << reach;
+    for (std::int32_t k = 0; k < 50; ++k) EXPECT_EQ(found[std::size_t(k)], k);
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -29,10 +30,19 @@ class CellGrid {
 
   // Calls visit(k) for every body k of the cells within `reach` (m) of x's: a superset of those
   // whose point lies within reach of x, in a fixed order (the cells by axis, then by insertion).
+  // A reach of more rings of cells around x's than there are occupied cells (a striker far
+  // larger than the beads) visits every occupied cell instead, in the grid's own order.
   template <class Visit>
   void visit_near(const Eigen::Vector3d& x, double reach, Visit&& visit) const {
+    const double ring_count = std::ceil(reach / width_);
+    if (!(ring_count <= 1.0) &&
+        !(std::pow(2.0 * ring_count + 1.0, dimension_) <= double(cells_.size()))) {
+      for (const auto& [cell, bodies] : cells_)
+        for (std::int32_t k : bodies) visit(k);
+      return;
+    }
     const Cell c = cell_of(x);
-    const auto rings = std::int64_t(std::ceil(reach / width_));
+    const auto rings = std::int64_t(std::max(ring_count, 0.0));
     const std::int64_t ry = dimension_ >= 2 ? rings : 0, rz = dimension_ == 3 ? rings : 0;
     for (std::int64_t dx = -rings; dx <= rings; ++dx)
       for (std::int64_t dy = -ry; dy <= ry; ++dy)
@@ -53,7 +63,11 @@ class CellGrid {
   };
   Cell cell_of(const Eigen::Vector3d& x) const {
     Cell c;
-    for (int k = 0; k < 3; ++k) c[std::size_t(k)] = std::int64_t(std::floor(x(k) / width_));
+    // (a cell index beyond +-2^62 is held there: those far cells are one key, still a superset)
+    constexpr double kFarthest = 0x1p62;
+    for (int k = 0; k < 3; ++k)
+      c[std::size_t(k)] =
+          std::int64_t(std::clamp(std::floor(x(k) / width_), -kFarthest, kFarthest));
     return c;
   }
 
