@@ -148,6 +148,13 @@ class Impact {
     std::vector<double> delta_scale, impulse_scale, energy_tolerance;
     std::vector<double> self_mobility;     // H_jj (1/kg)
     std::vector<bool> gives_nothing_back;  // e = 0
+
+    void reset(std::size_t m) {
+      for (auto* values : {&stiffness, &exponent, &expansion_rate, &release_factor, &delta_scale,
+                           &impulse_scale, &energy_tolerance, &self_mobility})
+        values->assign(m, 0.0);
+      gives_nothing_back.assign(m, false);
+    }
   };
   // per contact: the state at the start of the current segment
   struct ContactStates {
@@ -155,6 +162,16 @@ class Impact {
     std::vector<double> delta, impulse, velocity, release_level, max_force, time_of_max;
     std::vector<double> work;    // J, the integral of -u_j dP_j so far
     std::vector<int> member_of;  // the contact's place in the segment's members, -1 if none
+
+    // open, unloaded, at u- (one entry per contact)
+    void reset(const Eigen::VectorXd& u_minus) {
+      const auto m = std::size_t(u_minus.size());
+      phase.assign(m, Phase::open);
+      for (auto* values : {&delta, &impulse, &release_level, &max_force, &time_of_max, &work})
+        values->assign(m, 0.0);
+      member_of.assign(m, -1);
+      velocity.assign(u_minus.data(), u_minus.data() + m);
+    }
   };
   // the current segment
   struct Segment {

@@ -24,17 +24,8 @@ void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen:
   const double fastest = -u_minus.minCoeff();
   velocity_tolerance_ = options.tolerance * fastest;
   sample_interval_ = options.sample_interval;
-  auto reset = [m](auto& buffer, auto value) { buffer.assign(m, value); };
-  reset(law_.stiffness, 0.0);
-  reset(law_.exponent, 0.0);
-  reset(law_.expansion_rate, 0.0);
-  reset(law_.release_factor, 0.0);
-  reset(law_.delta_scale, 0.0);
-  reset(law_.impulse_scale, 0.0);
-  reset(law_.energy_tolerance, 0.0);
-  reset(law_.self_mobility, 0.0);
+  law_.reset(m);
   local_tolerance_ = kLocalErrorShare * options.tolerance;
-  reset(law_.gives_nothing_back, false);
   for (std::size_t j = 0; j < m; ++j) {
     const LawConstants& law = laws[j];
     const double e2 = law.restitution * law.restitution;
@@ -56,15 +47,7 @@ void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen:
                  1.0 / (1.0 + law.exponent));
     law_.energy_tolerance[j] = velocity_tolerance_ * velocity_tolerance_ / (2.0 * h);
   }
-  reset(contact_.phase, Phase::open);
-  reset(contact_.delta, 0.0);
-  reset(contact_.impulse, 0.0);
-  reset(contact_.release_level, 0.0);
-  reset(contact_.max_force, 0.0);
-  reset(contact_.time_of_max, 0.0);
-  reset(contact_.work, 0.0);
-  reset(contact_.member_of, -1);
-  contact_.velocity.assign(u_minus.data(), u_minus.data() + m);
+  contact_.reset(u_minus);
   for (std::size_t j = 0; j < m; ++j)
     if (contact_.velocity[j] < -velocity_tolerance_) contact_.phase[j] = Phase::compression;
   segment_.members.clear();
