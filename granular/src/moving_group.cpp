@@ -172,9 +172,8 @@ void MovingGroup::restart(double t) {
     const bool hertz = c.law.effective_restitution() >= 1.0 && c.law.exponent == 1.5;
     if (!hertz || c.second < 0) {
       s.aside = std::int32_t(springs_.aside.size());
-      springs_.aside.push_back({.law = c.law,
-                                .max_compression = c.max_compression,
-                                .spring = std::int32_t(springs_.list.size() - 1)});
+      springs_.aside.push_back(
+          {.contact = std::int32_t(i), .spring = std::int32_t(springs_.list.size() - 1)});
     }
     if (c.second >= 0) {
       s.offset = c.anchor_offset +
@@ -285,10 +284,11 @@ void MovingGroup::rhs_in(const double* y, double* dydt) {
       const double first_gain = state_.gain[std::size_t(s.first)];
       if (s.second >= 0) {
         if (s.aside >= 0) {  // the bi-stiffness curves
-          const SpringAside& aside = springs_.aside[std::size_t(s.aside)];
+          const ContactState& c =
+              contacts_[std::size_t(springs_.aside[std::size_t(s.aside)].contact)];
           const double distance = std::sqrt(squared[j]);
-          force[j] = numerics::hysteresis_force(aside.law, reach[first + j] - distance,
-                                                aside.max_compression);
+          force[j] =
+              numerics::hysteresis_force(c.law, reach[first + j] - distance, c.max_compression);
           push[j] = force[j] / distance;
         }
         double* ab = acceleration + std::size_t(D) * std::size_t(s.second);
@@ -299,11 +299,11 @@ void MovingGroup::rhs_in(const double* y, double* dydt) {
         }
       } else {  // offset: the wall's normal; height: the origin's above the wall
         const SpringAside& aside = springs_.aside[std::size_t(s.aside)];
+        const ContactState& c = contacts_[std::size_t(aside.contact)];
         const double* ya = y + std::size_t(D) * std::size_t(s.first);
         double height = aside.height;
         for (int k = 0; k < D; ++k) height += s.offset[k] * ya[k];
-        force[j] =
-            numerics::hysteresis_force(aside.law, reach[first + j] - height, aside.max_compression);
+        force[j] = numerics::hysteresis_force(c.law, reach[first + j] - height, c.max_compression);
         if (force[j] != 0.0)
           for (int k = 0; k < D; ++k) aa[k] += first_gain * force[j] * s.offset[k];
       }

@@ -76,12 +76,12 @@ class MovingGroup {
     // m: the second's anchor and origin less the first's; against a wall, its unit normal
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   };
-  // Their law does not change between restarts.
+  // A spring whose law the right-hand side reads from its contact (contacts_[contact], its
+  // ContactState: the law and the history).
   struct SpringAside {
-    numerics::ContactLaw law;
-    double max_compression = 0.0;  // m
-    double height = 0.0;           // m, against a wall: the first's anchor and origin above it
-    std::int32_t spring = 0;       // its index in springs_.list
+    std::int32_t contact = 0;  // its index in contacts_
+    std::int32_t spring = 0;   // its index in springs_.list
+    double height = 0.0;       // m, against a wall: the first's anchor and origin above it
   };
   // An elastic spring's largest force (N), and when (s).
   struct Peak {

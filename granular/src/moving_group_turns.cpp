@@ -69,7 +69,8 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
   double cut = 1.0;
   springs_.history_changes.clear();
   for (const SpringAside& aside : springs_.aside) {
-    if (aside.law.effective_restitution() >= 1.0) continue;
+    const ContactState& contact = contacts_[std::size_t(aside.contact)];
+    if (contact.law.effective_restitution() >= 1.0) continue;
     const auto j = std::size_t(aside.spring);
     numerics::StepSeparation model{.quintic = true};
     const Separation s0 = spring_separation(j, start.data(), start_rate.data(), h);
@@ -77,21 +78,21 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
     model.r0 = s0.r, model.u0 = s0.u, model.a0 = s0.a;
     model.r1 = s1.r, model.u1 = s1.u, model.a1 = s1.a;
     const double reach = springs_.reach[j], overlap0 = reach - model.r0.norm(),
-                 overlap1 = reach - model.r1.norm(), history = aside.max_compression;
+                 overlap1 = reach - model.r1.norm(), history = contact.max_compression;
     const bool closing0 = model.r0.dot(model.u0) < 0.0, closing1 = model.r1.dot(model.u1) < 0.0;
     auto crosses = [&](double threshold) {
       return (overlap0 > threshold) != (overlap1 > threshold);
     };
     // smooth over the step unless its rate turns or it crosses a corner of its curves
-    const double e = aside.law.restitution;
+    const double e = contact.law.restitution;
     if (closing0 == closing1 && !crosses(history * (1.0 - e * e)) &&
         !(history > 0.0 && (crosses(history) || crosses(leave))))
       continue;
     const numerics::OnsetQuadrature missed = numerics::contact_step_quadrature(
-        model, {.reach = reach, .law = aside.law, .max_compression = history, .opening = leave},
+        model, {.reach = reach, .law = contact.law, .max_compression = history, .opening = leave},
         numerics::StepQuadrature<nodes.size()>{nodes, velocity_weights, position_weights});
     const bool changed = missed.change_count > 0;
-    const double share = turn_cut(j, aside.law, missed, overlap1, h);
+    const double share = turn_cut(j, contact.law, missed, overlap1, h);
     if (share < 1.0) {
       cut = std::min(cut, share);
       continue;
@@ -117,7 +118,7 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
     // deeper would take the loading force again, for a step the error control shortens until
     // its kick is within the tolerance. Its history lies the overlaps' resolution deeper.
     if (changed && springs_.history_changes.back().max_compression > 0.0 &&
-        aside.law.effective_restitution() == 0.0)
+        contact.law.effective_restitution() == 0.0)
       springs_.history_changes.back().max_compression += world_.options.overlap_resolution;
   }
   if (cut < 1.0) springs_.history_changes.clear();
@@ -223,7 +224,6 @@ void MovingGroup::settle_histories(double t) {
         springs_.peaks[j] = {.max_force = peak, .time_of_max = change.time};
     }
     c.max_compression = change.max_compression;
-    springs_.aside[std::size_t(springs_.list[j].aside)].max_compression = change.max_compression;
     changed = true;
   }
   springs_.history_changes.clear();
