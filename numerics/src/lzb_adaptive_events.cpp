@@ -15,17 +15,18 @@ using Eigen::Index;
 using namespace adaptive_lzb;  // the impact's phases, switches and constants
 
 double adaptive_lzb::Impact::member_velocity(const State& y, std::size_t member) const {
-  return column_velocity(member, [&](std::size_t other) { return y[segment_.active + other]; });
+  return shared_.column_velocity(
+      member, [&](std::size_t other) { return y[shared_.segment.active + other]; });
 }
 
 double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const State& y) const {
   if (kind == release)
-    return y[member] * law_.delta_scale[segment_.members[member]] -
-           contact_.release_level[segment_.members[member]];
+    return y[member] * shared_.law.delta_scale[shared_.segment.members[member]] -
+           shared_.contact.release_level[shared_.segment.members[member]];
   const double velocity = member_velocity(y, member);
   switch (kind) {
     case join:
-      return velocity + velocity_tolerance_;
+      return velocity + shared_.velocity_tolerance;
     case compression_end:
       return -velocity;
     default:  // reload
@@ -37,25 +38,25 @@ double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const St
 // expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
 
 void adaptive_lzb::Impact::watch(double t, Watched& values) {
-  const State* y = &segment_.y_at;
+  const State* y = &shared_.segment.y_at;
   if (t == ode_.time())
     y = &ode_.state();
   else
-    ode_.state_at(t, segment_.y_at);
-  values.velocity.resize(segment_.members.size());
-  values.delta.resize(segment_.active);
+    ode_.state_at(t, shared_.segment.y_at);
+  values.velocity.resize(shared_.segment.members.size());
+  values.delta.resize(shared_.segment.active);
   member_velocities(*y, values.velocity);
   // unclamped, so that a release at delta = 0 is narrowed where delta changes sign
-  for (std::size_t a = 0; a < segment_.active; ++a)
-    values.delta[a] = (*y)[a] * law_.delta_scale[segment_.members[a]];
+  for (std::size_t a = 0; a < shared_.segment.active; ++a)
+    values.delta[a] = (*y)[a] * shared_.law.delta_scale[shared_.segment.members[a]];
 }
 
 // The switches of [t0, t1], each narrowed (TOMS 748) to a few ulp of t on the dense output.
 // Every member is on the near side of its switches when a segment starts, up to rounding.
 void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, const Watched& after,
                                   std::vector<Crossing>& found) {
-  if (within_.on) {
-    locate_turns(t0, t1, before, after);
+  if (within_.on()) {
+    within_.locate_turns(t0, t1, before, after);
     return;
   }
   const double resolution = 4.0 * DBL_EPSILON * t1;
@@ -69,15 +70,15 @@ void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, c
       // packing keeps hundreds of contacts in the impact, and every narrowing step asked for
       // all of them)
       auto q = [&](double t) {
-        ode_.state_at(t, segment_.y_at);
-        return member_value(member, kind, segment_.y_at);
+        ode_.state_at(t, shared_.segment.y_at);
+        return member_value(member, kind, shared_.segment.y_at);
       };
       crossing = narrow_crossing(q, t0, t1, q0, q1, resolution).upper;
     }
     found.push_back({long(member), kind, crossing});
   };
-  for (std::size_t p = 0; p < segment_.members.size(); ++p) {
-    switch (contact_.phase[segment_.members[p]]) {
+  for (std::size_t p = 0; p < shared_.segment.members.size(); ++p) {
+    switch (shared_.contact.phase[shared_.segment.members[p]]) {
       case Phase::open:
         check(p, join);
         break;
