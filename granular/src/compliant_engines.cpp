@@ -15,9 +15,8 @@ namespace {
 
 // Overlaps below this share of the impact's are never integrated (CompliantOptions): their
 // force is below 1e-18 of the peak force. A contact joining at an overlap rho misses an
-// impulse K rho^2.5 / (2.5 w) at approach speed w: at 1e-6 of the overlap (this floor before
-// issue 24) a chain's late, slow recontacts moved its beads by 5e-11 of the strike's speed,
-// which the tightest tolerances resolve (tests/packings/test_packing_reduction.cpp).
+// impulse K rho^2.5 / (2.5 w) at approach speed w, which this floor keeps below what the
+// tightest tolerances resolve (tests/packings/test_packing_reduction.cpp).
 constexpr double kOverlapResolution = 1e-12;
 
 // The impact's overlap, or the static one of a precompressed scene struck by nothing.

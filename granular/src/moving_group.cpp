@@ -206,12 +206,10 @@ void MovingGroup::restart(double t) {
 // After its own event, a group goes on at its own pace. At a window's start it takes the median
 // of its members' last steps: a group that goes on from the last window keeps its pace, and the
 // few bodies that join it from short collisions do not make it climb back from their short
-// steps (the smallest of them cost the front's group four of its six steps a window: the error
-// control grows a step at most fivefold). With that step goes the controller's memory of the
-// group that took it, for a group formed anew as for one going on, so that the two mirror
-// halves of a group that parts start alike (one went on with its memory, the other without:
-// an HCP patch struck on its mirror plane parted mirror beads by 5.3e-12 of the speed at
-// tolerance 1e-8).
+// steps (the error control grows a step at most fivefold). With that step goes the controller's
+// memory of the group that took it, for a group formed anew as for one going on, so that the two
+// mirror halves of a group that parts start alike (docs/design/moving_geometry.md, "Round-off
+// and symmetry").
 MovingGroup::StepStart MovingGroup::step_start() const {
   if (last_step_ > 0.0) return {last_step_, dense_->last_error()};
   std::vector<std::pair<double, double>> hints;  // (step, error)

@@ -143,11 +143,10 @@ class MovingGroup {
   void move_to(double t);
   void handle(const Event& event);
   // The elastic contacts' largest forces over [t0, t1] of the current step: the cubic through
-  // their forces at the step's four nodes, which its right-hand side formed (error O(h^4), as
-  // the gap's cubic Hermite formed anew at every step's end, whose gathering and square roots
-  // were 7 to 12 % of a packing's run; the dense output evaluated at each peak made the cost
-  // grow as the group times its contacts). Only the reported peak forces depend on it, not the
-  // motion. Kept in springs_.peaks, by the springs' order, and folded into the contacts by move_to.
+  // their forces at the step's four nodes, which its right-hand side formed (error O(h^4);
+  // docs/design/moving_geometry.md, "Peaks, events and the right-hand side"). Only the reported
+  // peak forces depend on it, not the motion. Kept in springs_.peaks, by the springs' order, and
+  // folded into the contacts by move_to.
   void track_peaks(double t0, double t1);
   using State = numerics::RungeKuttaNystrom::State;
   // The group's motion as the Nystrom step reads it: its right-hand side, and the amendment at

@@ -122,9 +122,8 @@ void MovingGroup::probe_entry(std::size_t entry, const numerics::RungeKuttaNystr
   }
 }
 
-// At the step's end, where most are taken, the entries read the step's own state (its dense
-// output there was 84 M of the event search's 191 M instructions on FCC 20^3 at tolerance
-// 3e-4).
+// At the step's end, where most are taken, the entries read the step's own state, not its dense
+// output (docs/design/moving_geometry.md, "Peaks, events and the right-hand side").
 void MovingGroup::measure(double t, const std::vector<std::size_t>& entries, Samples& samples) {
   samples.gap.resize(entries.size());
   samples.rate.resize(entries.size());

@@ -31,9 +31,8 @@ double MovingGroup::amend_switches(const State& start, const State& start_rate, 
   double* impulses = end.data() + 2 * velocities;
   // A spring whose whole impulse over the step, in the state's units, is under a hundredth of
   // the absolute tolerance changes its beads' velocities by less (their gains T / m are at most
-  // the impulses' T / m_lightest), and its weights can miss no more: left as it is (63 % of
-  // FCC 20^3's switching springs at tolerance 1e-2 and 57 % at 3e-4, 36 % of 32 x 32's at 3e-5:
-  // contacts that barely load).
+  // the impulses' T / m_lightest), and its weights can miss no more: left as it is (contacts
+  // that barely load; docs/design/moving_geometry.md, "A touch within a step").
   const double negligible = 1e-2 * world_.options.ode.absolute_tolerance;
   for (std::size_t j : switching) {
     const Spring& s = springs_.list[j];
@@ -57,8 +56,8 @@ double MovingGroup::amend_switches(const State& start, const State& start_rate, 
 }
 
 // The separation modelled by the quintic Hermite of the step's ends, whose accelerations are the
-// law the step took: with the cubic, which places a turn to O(h^3) in its time, a head-on pair
-// at e = 0 left 1.3e-6 of V off at tolerance 1e-6 (the quintic: 1.2e-10).
+// law the step took (the cubic places a turn only to O(h^3) in its time:
+// docs/design/moving_geometry.md, "Trials not kept").
 double MovingGroup::amend_histories(const State& start, const State& start_rate, State& end,
                                     const State& end_rate, double h) {
   using numerics::rkn43::nodes, numerics::rkn43::velocity_weights,
@@ -130,10 +129,8 @@ double MovingGroup::amend_histories(const State& start, const State& start_rate,
 // (eta^2 / 30) F_M R^2 tau in impulse, R the path's fall after the turn over e^2 delta_p, tau
 // the time after it. Where that would move the lighter body by more than the tolerance times
 // the fastest speed (small e, long steps), the step is cut to end just past the turn: the share
-// of h it keeps, or 1. Measured on a head-on pair, amended, against this estimate: 1.6e-3 of V
-// at tolerance 1e-3 and e = 0.2 (R = 0.42, estimate 3.2e-3), 7.5e-6 at 1e-6 and e = 0.01
-// (R = 0.18, 1.8e-5), 6.5e-7 at 1e-10 and e = 0.01 (R = 0.076, 2.2e-6), 2.2e-5 at 1e-3 and
-// e = 0.5 (R = 0.068, 8.4e-5). A turn in the step's last 5 % is amended.
+// of h it keeps, or 1 (the estimate against a head-on pair: docs/design/moving_geometry.md, "A
+// turn within a step"). A turn in the step's last 5 % is amended.
 double MovingGroup::turn_cut(std::size_t j, const numerics::ContactLaw& law,
                              const numerics::OnsetQuadrature& missed, double end_overlap,
                              double h) const {

@@ -55,10 +55,9 @@ double MovingContacts::next_meeting(double target) const {
 // flying freely within twice the window (the halo's margin for a body the group speeds up)
 // takes it too, and so on; as the free bodies' meetings are found (free_meetings), at the
 // joining overlap. Without them a wake body of the halo, set moving by its group, touched its
-// free neighbour and restarted the whole group to take it: a 100 x 100 packing's front group
-// of 8 000 bodies restarted 680 times at tolerance 1e-4, 3.3 M bodies restarted against 8.3 M
-// body steps (22 times on 32 x 32, 13 k against 277 k); 15 times with them, and 5.0 M body
-// steps. Pairs at rest or parting (touching beads ahead of a front) are not meetings.
+// free neighbour and restarted the whole group to take it (docs/design/moving_geometry.md,
+// "Bodies in free flight, and groups"). Pairs at rest or parting (touching beads ahead of a front)
+// are not meetings.
 void MovingContacts::link_halo_meetings(double window, std::size_t loaded_count,
                                         std::vector<std::int32_t>& linked,
                                         std::vector<std::pair<std::int32_t, std::int32_t>>& pairs) {

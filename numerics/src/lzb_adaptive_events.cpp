@@ -34,9 +34,7 @@ double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const St
   }
 }
 
-// d delta_j/dt = -u_j (compression, mono-stiffness expansion) or -u_j / e_j^2 (bi-stiffness
-// expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
-
+// The members' velocities and the active ones' delta_j at t, on the dense output.
 void adaptive_lzb::Impact::watch(double t, Watched& values) {
   const State* y = &shared_.segment.y_at;
   if (t == ode_.time())

@@ -35,9 +35,8 @@ enum EventKind : int {
 constexpr int kSamplesPerStep = 2;
 
 // The share of the tolerance allowed to each step's local error: the errors of a few hundred
-// steps add up, and the velocities and the energy must come out within the tolerance (with
-// share 1/30 a lone elastic contact at 1e-9 gained 1.3 times it; with 1/100 the extremes
-// suite's largest is 0.93 times it, at 1e-12).
+// steps add up, and the velocities and the energy must come out within the tolerance
+// (docs/design/adaptive_lzb.md, "The state and the tolerances").
 constexpr double kLocalErrorShare = 1.0 / 100.0;
 
 // The integration of one impact: segments between switches, each an ODE in its members'

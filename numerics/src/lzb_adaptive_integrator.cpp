@@ -131,6 +131,8 @@ void adaptive_lzb::Impact::account_work(const State& y) {
   }
 }
 
+// d delta_j/dt = -u_j (compression, mono-stiffness expansion) or -u_j / e_j^2 (bi-stiffness
+// expansion); dP_j/dt = F_j = K_j delta_j^eta_j. Scaled by each contact's delta and P scales.
 void adaptive_lzb::Impact::derivative(const State& y, State& dydt) {
   member_velocities(y, shared_.segment.rhs_velocity);
   for (std::size_t a = 0; a < shared_.segment.active; ++a) {

@@ -150,9 +150,8 @@ bool WithinSteps::settle_turns(double t0, double t1) {
 // swap; a separated contact approaching again, its delta_j set back to 0) to the step's end, the
 // contact is integrated again alone, to the same tolerance: its delta_j and P_j under its own
 // law, its u_j the step's plus what its new impulse changes, H_jj (P_j - P_j of the step); its
-// neighbours' impulses as the step found them. Corrected along the step's own velocity instead,
-// a lone contact at e = 0.3 landed up to 40 times the tolerance off: the law's change moves the
-// contact's own velocity through H_jj, the largest of its column.
+// neighbours' impulses as the step found them: the law's change moves the contact's own velocity
+// through H_jj, the largest of its column (docs/design/adaptive_lzb.md, "Trials not kept").
 bool WithinSteps::settle_member(double t0, double t1, std::span<const Turn> turns) {
   const Segment& segment = impact_.segment;
   const ContactConstants& law = impact_.law;

@@ -25,8 +25,8 @@ constexpr double kNeighbourRatio = 4.0;
 // A step carries at most this share of the contact's natural impulse sqrt(E / (a H_jj)), the
 // impulse over which its own kick changes its stiffness' time scale: the kicks are then stable
 // and accurate for a contact holding little energy, whose delta_p step would overshoot its
-// release (Stormer-Verlet's bound h < 2 / omega, with omega^2 = H_jj dF/d(delta) = a H_jj F^2 / E).
-// 0.5 brings a 32 x 32 packing's error at delta_p = 1e-7 N s from 4e-4 to 2.4e-5 m/s.
+// release (Stormer-Verlet's bound h < 2 / omega, with omega^2 = H_jj dF/d(delta) = a H_jj F^2 / E;
+// docs/design/asynchronous_steps.md).
 constexpr double kNaturalShare = 0.5;
 
 // Below this relative change of w over a drift, the impulse absorbed is summed from its

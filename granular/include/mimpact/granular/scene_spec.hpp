@@ -91,11 +91,9 @@ struct CompliantSpec {
 
   // The loosest tolerance where the frozen geometry integrates (a chain, or compliant.geometry
   // "frozen"): above it the frozen integrator leaves out overlaps below 10 tolerance^(2 / (1 +
-  // eta)) of the impact's (0.6 % of it at 1e-4, 4 % at 1e-3, a quarter at 1e-2), a departure
-  // from the law rather than an integration error. The moving geometry resolves overlaps down to
-  // (1e-2 tolerance)^(1 / eta) of the impact's (1 % at 1e-1) and takes up to 1e-1: its Nystrom
-  // pair's error estimate is third order and errs on the safe side (FCC 20^3 within RMS 5.6e-5
-  // of the converged velocities at 1e-2, 5.6e-4 at 1e-1; hexagonal 32^2 4.7e-4 and 3.3e-3).
+  // eta)) of the impact's, a departure from the law rather than an integration error. The moving
+  // geometry resolves overlaps down to (1e-2 tolerance)^(1 / eta) of the impact's and takes up
+  // to 1e-1 (docs/design/moving_geometry.md, "One tolerance").
   static constexpr double kLoosestFrozenTolerance = 1e-4;
 
   template <class Self, class Visit>

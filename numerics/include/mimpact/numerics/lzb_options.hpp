@@ -29,8 +29,7 @@ struct LzbOptions {
   // discrete impulse dynamics can resolve) and tol_E_j = tol_u_j^2 / (2 H_jj) (the energy
   // that, released at contact j, changes u_j by tol_u_j). Both vanish with delta_p, so the
   // result converges as delta_p -> 0 without tuning. The default 0.1 lets the wave front in
-  // early enough: with 1 the error of C1's post-impact velocities is 22 % larger at the same
-  // delta_p; below 0.1 it shrinks by 2 % more while more of the front takes part in each step.
+  // early enough (docs/validation.md).
   double termination_velocity_factor = 0.1;
   // Fixed thresholds in place of the scaled ones, as Siconos has them: kept to reproduce
   // published runs. They do not vanish with delta_p, so below some delta_p the result stops

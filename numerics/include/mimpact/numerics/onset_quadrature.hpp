@@ -30,8 +30,7 @@ namespace mimpact::numerics {
 // both along the same model, so that the model's own error largely cancels and the difference
 // vanishes where the force is smooth. Added to the two bodies' velocities, equal and opposite
 // (a group's momentum stays exact), it takes the velocity's error of a step across a touch from
-// order h^2.5 to h^5 (tests/numerics/test_onset_quadrature.cpp: 45 times smaller at an eighth
-// of the contact's duration, 1 460 times at a sixty-fourth).
+// order h^2.5 to h^5 (tests/numerics/test_onset_quadrature.cpp).
 struct OnsetQuadrature {
   // N s / h: what the weights missed of the force on the second body (along the separation
   // from the first), and of the force's magnitude (the contact's impulse)

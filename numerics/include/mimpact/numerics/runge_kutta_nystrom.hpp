@@ -88,10 +88,8 @@ class RungeKuttaNystrom : public EmbeddedPair<RungeKuttaNystrom> {
   // An accepted one changes by Gustafsson's proportional-integral rule (ACM TOMS 17, 1991), as
   // Hairer's DOPRI5 with beta = 0.08 (Hairer, Norsett & Wanner, Solving ODEs I, section II.4): 0.9
   // err^(-(1/4 - 0.75 beta)) err_last^beta within [1/5, 5], and not up right after a rejection;
-  // the last error is carried across restarts (restart's last_error). 10 to
-  // 25 % of a packing's attempts were rejected under the rule without its integral part (keep
-  // the step for err in [1/2, 1], else 0.9 err^(-1/4)); this one takes 0.81 to 1.01 of the work
-  // at equal accuracy (docs/design/moving_geometry.md). max_step bounds every step.
+  // the last error is carried across restarts (restart's last_error); against the rule without
+  // its integral part, docs/design/moving_geometry.md. max_step bounds every step.
   bool admit(double& h) const {
     if (max_step_ > 0.0) h = std::min(h, max_step_);
     return true;
