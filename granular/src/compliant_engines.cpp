@@ -25,44 +25,51 @@ double overlap_scale(const ContactModel& model) {
   return std::isfinite(overlap) ? overlap : std::max(model.largest_static_overlap, 1e-6);
 }
 
-// The compliant integration's error control, whichever geometry: the relative tolerance, the
+// The compliant integration's error control for one engine: the relative tolerance, the
 // positions' absolute one (m) and the overlap a contact joins at (m).
 struct CompliantTolerances {
   double relative, absolute, resolution;
 };
+enum class Engine { kernel, moving };
 
-CompliantTolerances compliant_tolerances(const ContactModel& model, const CompliantSpec& spec) {
+// The one mapping from the scene's tolerance to each engine's error control. The two engines
+// leave a contact below the joining overlap r out in different ways, so r follows from the
+// tolerance by two rules (docs/design/compliant_contacts.md, docs/design/moving_geometry.md):
+// - the kernel's engine leaves a contact out only until its overlap reaches r (one approaching
+//   slower than tolerance x V collides at once instead): a contact approaching at tolerance x V
+//   holds tolerance^(2 / (1 + eta)) of the impact's overlap, and overlaps up to ten times that
+//   are the integration's own error (its velocities carry tolerance x V);
+// - the moving geometry leaves a contact out below r for a window (a quarter of a contact's
+//   duration), which changes the velocities by about (r / overlap)^eta V / 4: it resolves
+//   overlaps down to (1e-2 tolerance)^(1 / eta) of the impact's, so that this stays under the
+//   error the tolerance allows.
+// Either rule in the other engine costs accuracy or time (docs/design/compliant_contacts.md,
+// "Trials not kept").
+CompliantTolerances compliant_tolerances(const ContactModel& model, const CompliantSpec& spec,
+                                         Engine engine) {
   const double tolerance = spec.tolerance;  // within [1e-14, 1e-4] (CompliantSpec)
-  // A contact approaching at tolerance x V holds tolerance^(2 / (1 + eta)) of the impact's
-  // overlap: overlaps up to ten times that are the integration's own error (its velocities
-  // carry tolerance x V), not worth integrating.
   const double overlap = overlap_scale(model);
-  const double resolution =
-      std::max(kOverlapResolution,
-               10.0 * std::pow(tolerance, 2.0 / (1.0 + model.laws.front().exponent))) *
-      overlap;
-  // the positions to the tolerance's share of the impact's overlap
-  return {tolerance, 1e-2 * tolerance * overlap, resolution};
+  const double exponent = model.laws.front().exponent;
+  // the positions to the tolerance's share of the impact's overlap; the Nystrom pair's steps
+  // are set by the contacts' impulses since their group's last restart, small numbers held to
+  // the absolute tolerance, and a tenth of that share rather than a hundredth takes fewer body
+  // steps at equal accuracy (docs/design/moving_geometry.md)
+  const double absolute = 1e-2 * tolerance * overlap;
+  if (engine == Engine::moving)
+    return {tolerance, 10.0 * absolute,
+            std::max(kOverlapResolution, std::pow(1e-2 * tolerance, 1.0 / exponent)) * overlap};
+  return {
+      tolerance, absolute,
+      std::max(kOverlapResolution, 10.0 * std::pow(tolerance, 2.0 / (1.0 + exponent))) * overlap};
 }
 
 MovingContactsOptions moving_options(const ContactModel& model, const CompliantSpec& spec) {
-  const CompliantTolerances tolerances = compliant_tolerances(model, spec);
+  const CompliantTolerances tolerances = compliant_tolerances(model, spec, Engine::moving);
   MovingContactsOptions options;
   options.ode.relative_tolerance = tolerances.relative;
-  // The Nystrom pair's steps are set by the contacts' impulses since their group's last restart,
-  // small numbers held to the absolute tolerance: a tenth of the tolerance's share of the
-  // impact's overlap rather than a hundredth takes fewer body steps at equal accuracy
-  // (docs/design/moving_geometry.md).
-  options.ode.absolute_tolerance = 10.0 * tolerances.absolute;
+  options.ode.absolute_tolerance = tolerances.absolute;
   options.ode.event_tolerance = 1e-13;
-  // A contact left out below an overlap r for a window (a quarter of a contact's duration)
-  // changes the velocities by about (r / overlap)^eta V / 4: the moving geometry resolves
-  // overlaps down to (1e-2 tolerance)^(1 / eta) of the impact's, so that this stays under the
-  // error the tolerance allows (docs/design/moving_geometry.md).
-  options.overlap_resolution =
-      std::max(kOverlapResolution,
-               std::pow(1e-2 * tolerances.relative, 1.0 / model.laws.front().exponent)) *
-      overlap_scale(model);
+  options.overlap_resolution = tolerances.resolution;
   options.max_steps = spec.max_steps;
   return options;
 }
@@ -147,7 +154,7 @@ class ContactWatch : public kernel::SimulationObserver {
 
 std::unique_ptr<plugins::CompliantIntegrator> kernel_integrator(const ContactModel& model,
                                                                 const CompliantSpec& spec) {
-  const CompliantTolerances tolerances = compliant_tolerances(model, spec);
+  const CompliantTolerances tolerances = compliant_tolerances(model, spec, Engine::kernel);
   plugins::CompliantOptions options;
   options.ode.relative_tolerance = tolerances.relative;
   options.ode.absolute_tolerance = tolerances.absolute;
