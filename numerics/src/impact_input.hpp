@@ -3,8 +3,10 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <span>
+#include <string_view>
 
 #include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/tangential_rows.hpp"
 
 namespace mimpact::numerics {
 
@@ -19,5 +21,12 @@ Eigen::VectorXd checked_impact_input(const Eigen::SparseMatrix<double>& H,
 Eigen::VectorXd checked_impact_input(const Eigen::MatrixXd& H, const Eigen::VectorXd& u_minus,
                                      std::span<const ContactLaw> laws,
                                      std::span<const Eigen::Index> sampled_contacts);
+
+// The friction of an impact: each law's friction finite and >= 0, and > 0 only for a contact
+// with tangential rows and an integrator that integrates friction; the rows (when given) sized
+// for the contacts, finite, H_tt symmetric with a positive diagonal. Throws InvalidInput naming
+// the entry, its value and what is allowed.
+void checked_friction(std::span<const ContactLaw> laws, const TangentialRows* rows,
+                      bool integrates_friction, std::string_view integrator);
 
 }  // namespace mimpact::numerics

@@ -15,8 +15,10 @@ using Eigen::Index;
 using namespace adaptive_lzb;  // the impact's phases, switches and constants
 
 double adaptive_lzb::Impact::member_velocity(const State& y, std::size_t member) const {
-  return shared_.column_velocity(
+  const double velocity = shared_.column_velocity(
       member, [&](std::size_t other) { return y[shared_.segment.active + other]; });
+  if (!friction_.on()) return velocity;
+  return velocity + friction_.normal_increment(y, shared_.segment.members[member]);
 }
 
 double adaptive_lzb::Impact::member_value(std::size_t member, int kind, const State& y) const {
@@ -47,6 +49,7 @@ void adaptive_lzb::Impact::watch(double t, Watched& values) {
   // unclamped, so that a release at delta = 0 is narrowed where delta changes sign
   for (std::size_t a = 0; a < shared_.segment.active; ++a)
     values.delta[a] = (*y)[a] * shared_.law.delta_scale[shared_.segment.members[a]];
+  if (friction_.on()) friction_.watch(*y, values.friction);
 }
 
 // The switches of [t0, t1], each narrowed (TOMS 748) to a few ulp of t on the dense output.
@@ -89,6 +92,8 @@ void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, c
         break;
     }
   }
+  if (friction_.on())
+    friction_.locate(t0, t1, segment_start_, before.friction, after.friction, found);
 }
 
 }  // namespace mimpact::numerics

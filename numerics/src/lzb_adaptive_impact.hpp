@@ -3,7 +3,8 @@
 // The integration of one adaptive LZB impact (adaptive_lzb::Impact, held by
 // LzbAdaptiveIntegrator), defined in lzb_adaptive_integrator.cpp (segments, the right-hand side,
 // the run) and lzb_adaptive_events.cpp (switches located as events); its state lives in
-// lzb_adaptive_state.hpp and its within-steps strategy in lzb_adaptive_within_steps.hpp.
+// lzb_adaptive_state.hpp, its within-steps strategy in lzb_adaptive_within_steps.hpp and its
+// friction in lzb_adaptive_friction.hpp.
 // docs/design/adaptive_lzb.md says how it integrates.
 
 #include <cfloat>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "lzb_adaptive_friction.hpp"
 #include "lzb_adaptive_state.hpp"
 #include "lzb_adaptive_within_steps.hpp"
 #include "mimpact/numerics/dense_output.hpp"
@@ -20,14 +22,6 @@
 #include "mimpact/numerics/lzb_adaptive_options.hpp"
 
 namespace mimpact::numerics::adaptive_lzb {
-
-// The switches of the right-hand side, each located as an event.
-enum EventKind : int {
-  join = 0,         // an open contact starts approaching: it enters compression at delta = 0
-  compression_end,  // u_j reaches 0 from below: delta_j is at its largest, expansion begins
-  reload,           // u_j of an expanding contact turns negative: compression again
-  release,          // delta_j reaches its release level: the contact leaves the impact
-};
 
 // Interior samples of each step searched for switches (besides its two ends). A velocity that
 // crosses 0 and back between two samples, a third of a step apart, turns within the step's
@@ -45,7 +39,9 @@ constexpr double kLocalErrorShare = 1.0 / 100.0;
 class Impact {
  public:
   explicit Impact(double tolerance)
-      : ode_(kLocalErrorShare * tolerance, kLocalErrorShare * tolerance), within_(shared_, ode_) {}
+      : ode_(kLocalErrorShare * tolerance, kLocalErrorShare * tolerance),
+        within_(shared_, ode_),
+        friction_(shared_, ode_) {}
   Impact(const Impact&) = delete;
   Impact& operator=(const Impact&) = delete;
 
@@ -77,9 +73,10 @@ class Impact {
   void notify(double t, const State* y, ImpactObserver& observer);
   void finish(double t, ImpactResult& result);
 
-  ImpactState shared_;  // H, the contacts and the segment, shared with within_
+  ImpactState shared_;  // H, the contacts and the segment, shared with within_ and friction_
   DenseOutput ode_;
   WithinSteps within_;
+  Friction friction_;
   double sample_interval_ = 0.0;
   std::int64_t steps_ = 0, contact_steps_ = 0;
   double segment_start_ = 0.0, last_sample_ = 0.0, closed_impulse_sum_ = 0.0;
@@ -102,6 +99,7 @@ inline void Impact::member_velocities(const State& y, std::vector<double>& veloc
       if (const int other = shared_.contact.member_of[row[k]]; other >= 0)
         velocity[std::size_t(other)] += value[k] * increment;
   }
+  if (friction_.on()) friction_.push_normal(y, velocity);
 }
 
 // The quantity that is > 0 before the switch `kind` of a member and <= 0 once it happened (read

@@ -61,7 +61,7 @@ void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen:
 // The members of the segment that starts now: the contacts holding energy, then the open
 // contacts their forces reach through H. The ODE state starts at [delta / scale, 0].
 void adaptive_lzb::Impact::begin_segment() {
-  if (within_.choose()) {
+  if (!friction_.on() && within_.choose()) {
     within_.begin_segment();
     size_segment();
     return;
@@ -93,6 +93,7 @@ void adaptive_lzb::Impact::begin_segment() {
         shared_.contact.member_of[row[k]] = int(shared_.segment.members.size());
         shared_.segment.members.push_back(row[k]);
       }
+  if (friction_.on()) friction_.add_reached();
   size_segment();
 }
 
@@ -113,6 +114,7 @@ void adaptive_lzb::Impact::size_segment() {
   shared_.segment.accounted_velocity.resize(shared_.segment.active);
   for (std::size_t a = 0; a < shared_.segment.active; ++a)
     shared_.segment.accounted_velocity[a] = shared_.contact.velocity[shared_.segment.members[a]];
+  if (friction_.on()) friction_.size_segment();
 }
 
 // The contacts' work since the last accounting point, by the trapezoidal rule on u: per contact
@@ -129,6 +131,7 @@ void adaptive_lzb::Impact::account_work(const State& y) {
     shared_.segment.accounted_velocity[a] = shared_.segment.velocity_at[a];
     shared_.segment.accounted_impulse[a] = impulse;
   }
+  if (friction_.on()) friction_.account_work(y);
 }
 
 // d delta_j/dt = -u_j (compression, mono-stiffness expansion) or -u_j / e_j^2 (bi-stiffness
@@ -142,6 +145,7 @@ void adaptive_lzb::Impact::derivative(const State& y, State& dydt) {
     dydt[shared_.segment.active + a] =
         shared_.law.force(j, shared_.delta_of(a, y)) / shared_.law.impulse_scale[j];
   }
+  if (friction_.on()) friction_.derivative(y, dydt);
 }
 
 // Writes the members' state at the end of the segment (state y) into the per-contact arrays.
@@ -157,10 +161,15 @@ void adaptive_lzb::Impact::end_segment(const State& y) {
     closed_impulse_sum_ += increment;
     if (within_.on()) within_.end_member(a, increment);
   }
+  if (friction_.on()) friction_.end_segment(y);
 }
 
 void adaptive_lzb::Impact::apply(const std::vector<Crossing>& crossings, double t) {
   for (const Crossing& crossing : crossings) {
+    if (crossing.kind >= slip_stop) {
+      friction_.apply(crossing);
+      continue;
+    }
     const Index j = shared_.segment.members[std::size_t(crossing.index)];
     switch (crossing.kind) {
       case join:
@@ -255,6 +264,7 @@ void adaptive_lzb::Impact::finish(double t, ImpactResult& result) {
   result.max_force = Eigen::Map<const Eigen::VectorXd>(shared_.contact.max_force.data(), Index(m));
   result.time_of_max_force =
       Eigen::Map<const Eigen::VectorXd>(shared_.contact.time_of_max.data(), Index(m));
+  if (friction_.on()) friction_.finish(result);
   result.steps = steps_;
   result.contact_steps = contact_steps_;
   result.duration = t;
@@ -267,6 +277,7 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
   shared_.H = &input.H;
   sampler_ = &sampler;
   prepare(input.diagonal, u_minus, input.laws, options);
+  friction_.prepare(input);
   begin_segment();
   // the first step: a small share of the time the fastest contact takes to stop
   double first_step = 1.0;
@@ -362,6 +373,8 @@ Eigen::VectorXd LzbAdaptiveIntegrator::velocity_resolution(const Eigen::VectorXd
                                                            const Eigen::VectorXd& u_minus) const {
   return Eigen::VectorXd::Constant(diagonal.size(), options_.tolerance * (-u_minus.minCoeff()));
 }
+
+bool LzbAdaptiveIntegrator::integrates_friction() const { return true; }
 
 void LzbAdaptiveIntegrator::run(const Input& input, ImpactObserver* observer,
                                 ImpactResult& result) {

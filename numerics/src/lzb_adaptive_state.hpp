@@ -17,9 +17,22 @@ namespace mimpact::numerics::adaptive_lzb {
 // Where a contact is in its cycle (docs/model.md, section 10).
 enum class Phase : unsigned char { open, compression, expansion };
 
-// The watched quantities at one time: the members' velocities and the active ones' delta.
+// The switches of the right-hand side, each located as an event.
+enum EventKind : int {
+  join = 0,         // an open contact starts approaching: it enters compression at delta = 0
+  compression_end,  // u_j reaches 0 from below: delta_j is at its largest, expansion begins
+  reload,           // u_j of an expanding contact turns negative: compression again
+  release,          // delta_j reaches its release level: the contact leaves the impact
+  // with friction (lzb_adaptive_friction.hpp), of a contact's tangential rows:
+  slip_stop,   // its slip stops (plane: s crosses 0; space: |s| falls to tolerance * V)
+  stick_end,   // the force that keeps it stuck reaches mu F: it slips
+  slip_armed,  // a slip started from rest has grown to 2 tolerance * V: its direction is free
+};
+
+// The watched quantities at one time: the members' velocities and the active ones' delta;
+// with friction, two per frictional member (Friction::watch).
 struct Watched {
-  std::vector<double> velocity, delta;
+  std::vector<double> velocity, delta, friction;
 };
 
 // Per contact: the law's constants and scales, fixed for the impact.

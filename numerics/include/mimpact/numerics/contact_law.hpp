@@ -28,6 +28,9 @@ struct ContactLaw {
   double exponent = 1.5;     // eta > 0: 1 a linear spring, 3/2 Hertz
   double restitution = 1.0;  // e in [0, 1]
   ComplianceModel model = ComplianceModel::bi_stiffness;
+  // mu >= 0, Coulomb's coefficient of a contact with tangential rows (TangentialRows); 0:
+  // frictionless. Read by the integrators that integrate friction (ImpactIntegrator).
+  double friction = 0.0;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {

@@ -12,6 +12,7 @@
 #include "mimpact/numerics/delassus.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
 #include "mimpact/numerics/impact_result.hpp"
+#include "mimpact/numerics/tangential_rows.hpp"
 
 // The seam of every way of integrating an LZB impact (the impulse steps, the asynchronous steps,
 // the adaptive integration of the continuous limit, and the next ones): one interface, one law
@@ -31,16 +32,21 @@ struct LawConstants {
   bool mono_stiffness = false;
 };
 
-// The law constants of an impact's contacts, one row each.
+// The law constants of an impact's contacts, one row each, and their Coulomb coefficients
+// apart (read only where an impact has friction).
 class LawTable {
  public:
   void assign(std::span<const ContactLaw> laws);
   const LawConstants& operator[](std::size_t j) const { return rows_[j]; }
   const LawConstants* data() const { return rows_.data(); }
   std::size_t size() const { return rows_.size(); }
+  double friction(std::size_t j) const { return friction_[j]; }
+  bool frictional() const { return frictional_; }  // some contact's friction > 0
 
  private:
   std::vector<LawConstants> rows_;
+  std::vector<double> friction_;
+  bool frictional_ = false;
 };
 
 // An integrator of the LZB impact. The caller gives the Delassus operator H and u-, or the
@@ -63,6 +69,15 @@ class ImpactIntegrator {
                          std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
   ImpactResult integrate(const Delassus& delassus, const Eigen::VectorXd& u_minus,
                          std::span<const ContactLaw> laws, ImpactObserver* observer = nullptr);
+  // With Coulomb friction: the tangential rows beside H; each contact's coefficient is its
+  // law's `friction`. The result adds P_t, s+ and the slip work (ImpactResult). Throws
+  // InvalidInput naming the entry for a bad block, and for a friction > 0 when this integrator
+  // does not integrate friction.
+  ImpactResult integrate(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& u_minus,
+                         std::span<const ContactLaw> laws, const TangentialRows& tangential,
+                         ImpactObserver* observer = nullptr);
+  // Whether run() integrates the tangential impulses of contacts with friction > 0.
+  virtual bool integrates_friction() const { return false; }
 
   // The contacts the observer sees in the next impacts (empty: all of them).
   void set_sampled_contacts(std::vector<Eigen::Index> contacts) {
@@ -74,13 +89,15 @@ class ImpactIntegrator {
                                               const Eigen::VectorXd& u_minus) const = 0;
 
   // One impact, checked: H compressed, its diagonal, u-, the law table; the mobility when the
-  // caller gave it.
+  // caller gave it; the tangential rows and H_tn^T (compressed) when it gave them.
   struct Input {
     const Eigen::SparseMatrix<double>& H;
     const Eigen::VectorXd& diagonal;
     const Eigen::VectorXd& u_minus;
     const LawTable& laws;
     const Eigen::SparseMatrix<double>* mobility = nullptr;
+    const TangentialRows* tangential = nullptr;
+    const Eigen::SparseMatrix<double>* tangent_to_normal = nullptr;  // H_tn^T: contacts x rows
   };
 
  protected:
@@ -100,10 +117,17 @@ class ImpactIntegrator {
   ImpactSampler& sampler() { return sampler_; }
 
  private:
-  ImpactResult integrate_checked(const Eigen::SparseMatrix<double>& H,
-                                 const Eigen::VectorXd& u_minus, std::span<const ContactLaw> laws,
-                                 const Eigen::SparseMatrix<double>* mobility,
-                                 ImpactObserver* observer);
+  // The caller's impact: H, u-, the laws, and the mobility and tangential rows it gave.
+  struct Given {
+    const Eigen::SparseMatrix<double>& H;
+    const Eigen::VectorXd& u_minus;
+    std::span<const ContactLaw> laws;
+    const Eigen::SparseMatrix<double>* mobility = nullptr;
+    const TangentialRows* tangential = nullptr;
+  };
+  ImpactResult integrate_checked(const Given& given, ImpactObserver* observer);
+  void assemble(const Given& given, const Eigen::SparseMatrix<double>* tangent_to_normal,
+                ImpactResult& result) const;
 
   std::vector<Eigen::Index> sampled_contacts_;
   ImpactSampler sampler_;

@@ -39,6 +39,13 @@ struct ImpactResult {
   // for the linear dependence of u on P (du = H dP).
   Eigen::VectorXd work;
   Eigen::VectorXd stored_energy;
+  // With tangential rows (TangentialRows; empty without): P_t per row (N s), the post-impact
+  // slip s+ = s- + H_tn P + H_tt P_t per row (m/s), and per contact the work of its tangential
+  // impulse, the integral of -s . dP_t (J): what slip dissipated. The kinetic energy lost is
+  // the sum of `work` and `slip_work`.
+  Eigen::VectorXd tangential_impulse;
+  Eigen::VectorXd slip;
+  Eigen::VectorXd slip_work;
   std::int64_t steps = 0;          // steps taken (the integrator says which)
   std::int64_t contact_steps = 0;  // contacts updated, summed over the steps: the work
   double duration = 0.0;           // physical duration of the impact (s)

@@ -59,6 +59,9 @@ class LzbAdaptiveIntegrator : public ImpactIntegrator {
   // tolerance x V, V the fastest approach: the velocities are right to that
   Eigen::VectorXd velocity_resolution(const Eigen::VectorXd& diagonal,
                                       const Eigen::VectorXd& u_minus) const override;
+  // Coulomb friction at the contacts with tangential rows (docs/model.md, "Friction"): slip,
+  // stick and their switches located as events, as the normal law's.
+  bool integrates_friction() const override;
 
  protected:
   void run(const Input& input, ImpactObserver* observer, ImpactResult& result) override;
