@@ -51,8 +51,7 @@ class Impact {
  private:
   using State = DenseOutput::State;
 
-  void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
-               const LawTable& laws, const LzbAdaptiveOptions& options);
+  void prepare(const ImpactIntegrator::Input& input, const LzbAdaptiveOptions& options);
   void begin_segment();
   void size_segment();
   // u of every member for the ODE state y (the increments of P applied through H's columns)

@@ -18,8 +18,11 @@ namespace mimpact::numerics {
 using Eigen::Index;
 using namespace adaptive_lzb;  // the impact's phases, switches and constants
 
-void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
-                                   const LawTable& laws, const LzbAdaptiveOptions& options) {
+void adaptive_lzb::Impact::prepare(const ImpactIntegrator::Input& input,
+                                   const LzbAdaptiveOptions& options) {
+  const Eigen::VectorXd& diagonal = input.diagonal;
+  const Eigen::VectorXd& u_minus = input.u_minus;
+  const LawTable& laws = input.laws;
   const std::size_t m = laws.size();
   const double fastest = -u_minus.minCoeff();
   shared_.velocity_tolerance = options.tolerance * fastest;
@@ -54,6 +57,7 @@ void adaptive_lzb::Impact::prepare(const Eigen::VectorXd& diagonal, const Eigen:
       shared_.contact.phase[j] = Phase::compression;
   shared_.segment.members.clear();
   within_.prepare(laws, std::size_t(options.within_steps_from));
+  friction_.prepare(input);
   steps_ = contact_steps_ = 0;
   segment_start_ = last_sample_ = closed_impulse_sum_ = 0.0;
 }
@@ -276,8 +280,7 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
   const Eigen::VectorXd& u_minus = input.u_minus;
   shared_.H = &input.H;
   sampler_ = &sampler;
-  prepare(input.diagonal, u_minus, input.laws, options);
-  friction_.prepare(input);
+  prepare(input, options);
   begin_segment();
   // the first step: a small share of the time the fastest contact takes to stop
   double first_step = 1.0;

@@ -21,6 +21,7 @@ LzbImpulseIntegrator::LzbImpulseIntegrator(LzbOptions options)
 void LzbImpulseIntegrator::take_steps(const Input& input, ImpactObserver* observer,
                                       ImpactResult& result) {
   prepare(input.diagonal, input.u_minus, input.laws);
+  friction_.prepare(input);
   const LawConstants* law = input.laws.data();
   detail::with_columns(input.H, options().dense_up_to, dense_,
                        [&](const auto& H) { step(H, law, observer, result); });
@@ -250,6 +251,17 @@ template <class Delassus>
   std::copy(a.merge_buffer, a.merge_buffer + a.active_count, a.active);
 }
 
+// 3b. the frictional contacts' tangential impulses (ImpulseStepFriction); a contact whose u
+//     they push into compression joins the impact
+void step_friction(ImpulseStepFriction& friction, StepArrays& a, std::size_t stepping) {
+  friction.step({a.active, stepping}, a.step_impulse, a.u);
+  for (Index i : friction.pushed())
+    if (!a.in_impact[i] && a.u[i] < -a.tolerance_u[i]) {
+      a.in_impact[i] = true;
+      a.active[a.active_count++] = i;
+    }
+}
+
 }  // namespace
 
 template <class Delassus>
@@ -295,6 +307,7 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
     cut_at_phase_end(a, H, primary, delta_p);
     const std::size_t stepping = a.active_count;
     result.contact_steps += std::int64_t(stepping);
+    if (friction_.on()) step_friction(friction_, a, stepping);
     propagate(a, H, stepping);
     const double primary_energy_start = a.energy[primary];
     const double primary_energy_end = update_energies(a, primary, stepping);
@@ -316,6 +329,7 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
   result.stored_energy = Eigen::Map<const Eigen::VectorXd>(a.energy, m);
   result.steps = step;
   result.duration = time;
+  friction_.finish(result);
 }
 
 }  // namespace mimpact::numerics

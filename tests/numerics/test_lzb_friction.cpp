@@ -3,20 +3,27 @@
 // and without spin) and Stronge's slender bar, whose slip halts and sticks or reverses.
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <vector>
 
+#include "../support/planar_discs.hpp"
 #include "../support/planar_frictional_impact.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/numerics/lzb_adaptive_integrator.hpp"
+#include "mimpact/numerics/lzb_asynchronous_integrator.hpp"
 #include "mimpact/numerics/lzb_impulse_integrator.hpp"
 
 namespace mimpact::numerics {
 namespace {
 
+using Eigen::Index;
 using Eigen::Vector3d;
+using testing::Discs;
+using testing::energy_of;
 constexpr double kTightest = 1e-13;  // LzbAdaptiveOptions' smallest tolerance
 
 Eigen::SparseMatrix<double> one_by_one(double value) {
@@ -63,12 +70,13 @@ PlanarRun integrate(const PlanarContact& c, ImpactIntegrator& integrator) {
   return run;
 }
 
-// The kinetic energy lost is the normal work plus the slip work, to round-off, and slip only
-// takes energy.
+// The kinetic energy lost is the normal work plus the slip work, to the round-off of summing
+// them over the steps, and slip only takes energy.
 void expect_energy_booked(const PlanarContact& c, const PlanarRun& run, const std::string& what) {
   const double before = c.kinetic_energy(c.velocity);
   const double lost = before - c.kinetic_energy(run.velocity);
-  EXPECT_NEAR(lost, run.result.work.sum() + run.result.slip_work.sum(), 1e-12 * before) << what;
+  const double round_off = 1e-12 + DBL_EPSILON * double(run.result.steps);
+  EXPECT_NEAR(lost, run.result.work.sum() + run.result.slip_work.sum(), round_off * before) << what;
   EXPECT_GE(run.result.slip_work(0), -1e-13 * before) << what;
 }
 
@@ -202,6 +210,199 @@ TEST(FrictionalImpact, StrongeBarAgreesWithTheClosedForm) {
   std::printf("slender bar: worst impulse error %.2e of m V\n", worst);
 }
 
+// Keller's impact in space (J. Appl. Mech. 53, 1986), where the slip's direction turns: one
+// contact with H_tn = 0, H_tt = diag(k1, k2) (a solid ellipsoid of semi-axes 2, 1, 1 standing on
+// its short axis: k1 = 2, k2 = 3.5 per kg), H_nn = 1. The normal impulse is (1 + e) |u_n0|; the
+// slip s = s0 + H_tt P_t follows the hodograph y / y0 = (x / x0)^(k2 / k1) whatever mu, until it
+// stops, and then sticks (H_tn = 0): P_t = -H_tt^-1 s0. With mu = 0.3 the slip outlasts the
+// impact (it would stop at p = 1.960868 > 1.5), with mu = 0.5 it stops at 1.176521.
+TEST(FrictionalImpact, KellerSlipTurnsAlongItsHodograph) {
+  const double k1 = 2.0, k2 = 3.5, e = 0.5;
+  Eigen::SparseMatrix<double> tangent(2, 2);
+  tangent.insert(0, 0) = k1;
+  tangent.insert(1, 1) = k2;
+  TangentialRows rows{.normal_to_tangent = Eigen::SparseMatrix<double>(2, 1),
+                      .tangent = tangent,
+                      .slip_minus = Eigen::Vector2d(1.0, 1.0),
+                      .first_row = {0, 2}};
+  LzbAdaptiveIntegrator integrator({.tolerance = kTightest});
+  for (double mu : {0.3, 0.5}) {
+    const ContactLaw laws[] = {
+        {.stiffness = 1e9, .exponent = 1.5, .restitution = e, .friction = mu}};
+    const ImpactResult result =
+        integrator.integrate(one_by_one(1.0), Eigen::VectorXd::Constant(1, -1.0), laws, rows);
+    const double x = result.slip(0), y = result.slip(1);
+    std::printf("mu %.1f: P_n %.15f, P_t (%.6f, %.6f), s+ (%.6f, %.6f)\n", mu, result.impulse(0),
+                result.tangential_impulse(0), result.tangential_impulse(1), x, y);
+    EXPECT_NEAR(result.impulse(0), 1.0 + e, 1e-10);
+    EXPECT_NEAR(result.velocity(0), e, 1e-10);
+    EXPECT_NEAR(x, 1.0 + k1 * result.tangential_impulse(0), 1e-12);
+    if (mu == 0.3) {  // still slipping: on the hodograph, |P_t| = mu P_n traced along a turn
+      EXPECT_NEAR(y, std::pow(x, k2 / k1), 1e-10);
+      EXPECT_NEAR(x, 0.269160, 1e-6);
+      EXPECT_NEAR(y, 0.100581, 1e-6);
+      EXPECT_NEAR(result.tangential_impulse(0), -0.365420, 1e-6);
+      EXPECT_NEAR(result.tangential_impulse(1), -0.256977, 1e-6);
+      EXPECT_LT(result.tangential_impulse.norm(), mu * result.impulse(0));
+    } else {  // stopped, then stuck
+      EXPECT_NEAR(result.tangential_impulse(0), -1.0 / k1, 1e-10);
+      EXPECT_NEAR(result.tangential_impulse(1), -1.0 / k2, 1e-10);
+      EXPECT_NEAR(std::hypot(x, y), 0.0, 1e-10);
+    }
+    EXPECT_GT(result.slip_work.sum(), 0.0);
+  }
+}
+
+// The impulse steps with friction: exact for the sphere on a flat (a lone contact at any
+// delta_p, its slip not moving its normal velocity), and first order in delta_p for the bar,
+// whose slip does (H_tn != 0), against the closed form.
+TEST(FrictionalImpact, ImpulseStepsSphereExactAndBarFirstOrder) {
+  const double m = 0.1, r = 0.01, inertia = 0.4 * m * r * r;
+  LzbImpulseIntegrator coarse({.relative_delta_p = 1e-3});
+  double worst_sphere = 0.0;
+  for (double degrees : {0.0, 30.0, 80.0})
+    for (double mu : {0.05, 0.5}) {
+      const double theta = degrees * std::numbers::pi / 180.0;
+      const PlanarContact c{.w_n = {0.0, 1.0, 0.0},
+                            .w_t = {1.0, 0.0, r},
+                            .inverse_mass = {1.0 / m, 1.0 / m, 1.0 / inertia},
+                            .velocity = {std::sin(theta), -std::cos(theta), 30.0},
+                            .mu = mu,
+                            .e = 0.6};
+      const testing::PlanarOutcome exact = testing::planar_frictional_impact(c.closed_form_input());
+      const PlanarRun run = integrate(c, coarse);
+      for (double error :
+           {run.result.impulse(0) - exact.p_n, run.result.tangential_impulse(0) - exact.p_t})
+        worst_sphere = std::max(worst_sphere, std::abs(error) / m);
+      expect_energy_booked(c, run, std::to_string(degrees) + " deg, mu " + std::to_string(mu));
+    }
+  std::printf("sphere on a flat, impulse steps of 1e-3 m V: worst error %.2e of V\n", worst_sphere);
+  EXPECT_LT(worst_sphere, 1e-12);
+
+  // the bar's halt in compression then reversal, and in restitution then stick
+  for (const PlanarContact& c : {bar(30.0, 0.2, 0.5, 0.1, 0.0), bar(30.0, 0.9, 0.5, 0.5, 0.0)}) {
+    const testing::PlanarOutcome exact = testing::planar_frictional_impact(c.closed_form_input());
+    double coarsest = 0.0, error = 0.0;
+    for (double relative : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
+      LzbImpulseIntegrator steps({.relative_delta_p = relative});
+      const PlanarRun run = integrate(c, steps);
+      error = std::hypot(run.result.impulse(0) - exact.p_n,
+                         run.result.tangential_impulse(0) - exact.p_t);
+      std::printf("bar, impulse steps of %.0e m V: error %.2e m V\n", relative, error);
+      EXPECT_LT(error, 0.1 * relative);
+      if (coarsest == 0.0) coarsest = error;
+      expect_energy_booked(c, run, "bar at " + std::to_string(relative));
+    }
+    EXPECT_LT(error, 1e-3 * coarsest);  // four decades of delta_p: at least first order
+  }
+}
+
+struct DiscsRun {
+  ImpactResult result;
+  Eigen::VectorXd velocity;
+};
+
+DiscsRun integrate(const Discs& d, double mu, double e, ImpactIntegrator& integrator) {
+  Eigen::MatrixXd w_n, w_t;
+  d.columns(w_n, w_t);
+  const Eigen::VectorXd inverse = d.inverse_mass();
+  const Eigen::MatrixXd h = w_n.transpose() * inverse.asDiagonal() * w_n;
+  const Index m = h.rows();
+  TangentialRows rows{
+      .normal_to_tangent = (w_t.transpose() * inverse.asDiagonal() * w_n).sparseView(0.0, 0.0),
+      .tangent = (w_t.transpose() * inverse.asDiagonal() * w_t).sparseView(0.0, 0.0),
+      .slip_minus = w_t.transpose() * d.velocity,
+      .first_row = {}};
+  for (Index j = 0; j <= m; ++j) rows.first_row.push_back(j);
+  const std::vector<ContactLaw> laws(
+      std::size_t(m), {.stiffness = 1e9, .exponent = 1.5, .restitution = e, .friction = mu});
+  DiscsRun run{
+      integrator.integrate(h.sparseView(0.0, 0.0), w_n.transpose() * d.velocity, laws, rows),
+      d.velocity};
+  run.velocity +=
+      inverse.asDiagonal() * (w_n * run.result.impulse + w_t * run.result.tangential_impulse);
+  return run;
+}
+
+// A spinning striker hits two touching discs off-centre (a break of three billiard balls): many
+// contacts, slip and stick, coupled through the bodies. The momentum and the angular momentum
+// about the origin are kept to 1e-12, the energy lost is the normal and slip work, and the
+// adaptive integration and the impulse steps (two independent methods) agree to their error.
+TEST(FrictionalImpact, ThreeDiscBreakKeepsMomentaAndAgreesAcrossIntegrators) {
+  const double r = 0.0286, m = 0.17;  // billiard balls
+  Discs d{.mass = {m, m, m}, .radius = {r, r, r}, .position = {}, .velocity = {}, .pairs = {}};
+  // the targets touch side by side; the striker comes up at disc 1, 30 degrees off its centre
+  const double c = std::cos(std::numbers::pi / 6.0);
+  d.position.resize(9);
+  d.position << -2.0 * r, -2.0 * r * c, 0.0, -r, 0.0, 0.0, r, 0.0, 0.0;
+  d.velocity = Eigen::VectorXd::Zero(9);
+  d.velocity << 0.0, 2.0, 40.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0;
+  d.pairs = {{0, 1}, {1, 2}};
+  auto momenta = [&](const Eigen::VectorXd& v) {
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();  // p_x, p_y, L_z about the origin
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d x = d.centre(i), p = m * v.segment<2>(3 * i);
+      total += Eigen::Vector3d(p.x(), p.y(),
+                               x.x() * p.y() - x.y() * p.x() + 0.4 * m * r * r * v(3 * i + 2));
+    }
+    return total;
+  };
+  // the largest difference of two runs' velocities, the spins as their contact points' speed
+  auto difference = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+    double largest = 0.0;
+    for (int i = 0; i < 9; ++i)
+      largest = std::max(largest, std::abs(x(i) - y(i)) * (i % 3 == 2 ? r : 1.0));
+    return largest;
+  };
+  const double speed = 2.0, kinetic = energy_of(d, d.velocity);
+  for (double mu : {0.1, 0.6}) {
+    LzbAdaptiveIntegrator adaptive({.tolerance = 1e-10});
+    const DiscsRun a = integrate(d, mu, 0.9, adaptive);
+    EXPECT_LT((momenta(a.velocity) - momenta(d.velocity)).cwiseAbs().maxCoeff(), 1e-12 * m * speed);
+    EXPECT_NEAR(kinetic - energy_of(d, a.velocity), a.result.work.sum() + a.result.slip_work.sum(),
+                1e-12 * kinetic);
+    EXPECT_GT(a.result.slip_work.minCoeff(), -1e-12 * kinetic);
+    EXPECT_GT(a.result.slip_work.sum(), 0.1 * kinetic);
+    double coarse = 0.0;
+    for (double relative : {1e-4, 1e-5}) {
+      LzbImpulseIntegrator steps({.relative_delta_p = relative});
+      const double gap = difference(a.velocity, integrate(d, mu, 0.9, steps).velocity) / speed;
+      std::printf("mu %.1f: slip work %.3e J, impulse steps of %.0e against adaptive %.2e of V\n",
+                  mu, a.result.slip_work.sum(), relative, gap);
+      EXPECT_LT(gap, relative);
+      if (coarse > 0.0) {
+        EXPECT_LT(gap, coarse / 5.0);  // converging, at first order
+      }
+      coarse = gap;
+    }
+  }
+}
+
+// A straight chain struck head-on with friction is the frictionless chain: no slip arises, the
+// tangential impulses stay 0 and the normal ones are the frictionless ones to the bit, for both
+// integrators.
+TEST(FrictionalImpact, HeadOnChainWithFrictionIsTheFrictionlessChain) {
+  const double r = 0.01, m = 0.0327;
+  Discs d{.mass = std::vector<double>(6, m),
+          .radius = std::vector<double>(6, r),
+          .position = Eigen::VectorXd::Zero(18),
+          .velocity = Eigen::VectorXd::Zero(18),
+          .pairs = {}};
+  for (int i = 0; i < 6; ++i) d.position(3 * i) = 2.0 * r * i;
+  for (int i = 0; i + 1 < 6; ++i) d.pairs.push_back({i, i + 1});
+  d.velocity(0) = 1.0;
+  LzbAdaptiveIntegrator adaptive({.tolerance = 1e-9});
+  LzbImpulseIntegrator steps({.relative_delta_p = 1e-4});
+  for (ImpactIntegrator* integrator :
+       {static_cast<ImpactIntegrator*>(&adaptive), static_cast<ImpactIntegrator*>(&steps)}) {
+    const DiscsRun with = integrate(d, 0.5, 0.8, *integrator);
+    const DiscsRun without = integrate(d, 0.0, 0.8, *integrator);
+    EXPECT_EQ(with.result.tangential_impulse, Eigen::VectorXd::Zero(5)) << integrator->name();
+    EXPECT_EQ(with.result.impulse, without.result.impulse) << integrator->name();
+    EXPECT_EQ(with.velocity, without.velocity) << integrator->name();
+  }
+}
+
 // mu = 0 with tangential rows: the normal impulse is the frictionless one to the bit, and the
 // slip moves only by H_tn P.
 TEST(FrictionalImpact, NoFrictionIsTheFrictionlessImpactToTheBit) {
@@ -236,7 +437,7 @@ TEST(FrictionalImpact, BadFrictionInputIsRefused) {
               adaptive.integrate(one_by_one(c.h_nn()), u, frictional);
             }).find("contact 0's friction"),
             std::string::npos);
-  LzbImpulseIntegrator steps;
+  LzbAsynchronousIntegrator steps;
   const std::string unsupported = message([&] { integrate(c, steps); });
   EXPECT_NE(unsupported.find("does not integrate friction"), std::string::npos) << unsupported;
   const ContactLaw negative[] = {{.stiffness = 1e9, .friction = -0.1}};

@@ -14,6 +14,7 @@
 #include "mimpact/numerics/contact_law.hpp"
 #include "mimpact/numerics/impact_integrator.hpp"
 #include "mimpact/numerics/impact_observer.hpp"
+#include "mimpact/numerics/impulse_step_friction.hpp"
 #include "mimpact/numerics/impulse_step_integrator.hpp"
 #include "mimpact/numerics/lzb_options.hpp"
 
@@ -49,6 +50,9 @@ class LzbImpulseIntegrator : public ImpulseStepIntegrator {
   explicit LzbImpulseIntegrator(LzbOptions options = {});
 
   std::string_view name() const override { return "impulse-step"; }
+  // Coulomb friction at the contacts with tangential rows, a first-order step in delta_p
+  // (ImpulseStepFriction).
+  bool integrates_friction() const override { return true; }
 
  protected:
   void take_steps(const Input& input, ImpactObserver* observer, ImpactResult& result) override;
@@ -76,6 +80,7 @@ class LzbImpulseIntegrator : public ImpulseStepIntegrator {
   Contacts contacts_;
   std::size_t initially_active_ = 0;  // how many take part at the start
   Eigen::MatrixXd dense_;             // H, for impacts among few contacts
+  ImpulseStepFriction friction_;      // the tangential impulses, where a contact has friction
 };
 
 }  // namespace mimpact::numerics
