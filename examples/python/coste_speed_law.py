@@ -42,7 +42,7 @@ def speed_constant(result):
 def model_speeds(result):
     """The model's wave speeds at the measured forces. Their sensor, a plane-sphere contact
     closing the chain, reads half the force between two beads of the same wave (Coste, Falcon &
-    Fauve, eqs. 18-20; docs/model.md, section 9)."""
+    Fauve, eqs. 18-20; docs/nesterenko.md)."""
     return speed_constant(result) * (2 * MEASURED[:, 0]) ** (1 / 6)
 
 

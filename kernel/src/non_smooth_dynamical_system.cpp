@@ -114,6 +114,35 @@ Eigen::SparseMatrix<double> NonSmoothDynamicalSystem::jacobian_matrix(std::span<
   return W;
 }
 
+Eigen::SparseMatrix<double> NonSmoothDynamicalSystem::tangent_matrix(
+    std::span<const Index> subset, const VectorXd& q, std::vector<Index>& first_row) const {
+  std::vector<Eigen::Triplet<double>> entries;
+  first_row.assign(1, 0);
+  MatrixXd rows;
+  for (Index j : subset) {
+    const Relation& relation = interactions_[std::size_t(j)]->relation();
+    const int count = relation.tangent_rows();
+    if (count > 0) {
+      Workspace& work = workspaces_[std::size_t(j)];
+      stack(j, q, work.q);
+      rows.setZero(count, work.q.size());
+      relation.tangent_jacobian(work.q, rows);
+      const Link& link = links_[std::size_t(j)];
+      const Index first_size = systems_[std::size_t(link.first)]->dimension();
+      for (Index c = 0; c < rows.cols(); ++c) {
+        const Index global = c < first_size ? offsets_[std::size_t(link.first)] + c
+                                            : offsets_[std::size_t(link.second)] + (c - first_size);
+        for (int r = 0; r < count; ++r)
+          if (rows(r, c) != 0.0) entries.emplace_back(global, first_row.back() + r, rows(r, c));
+      }
+    }
+    first_row.push_back(first_row.back() + count);
+  }
+  Eigen::SparseMatrix<double> W_t(dof_, first_row.back());
+  W_t.setFromTriplets(entries.begin(), entries.end());
+  return W_t;
+}
+
 Eigen::SparseMatrix<double> NonSmoothDynamicalSystem::mass_matrix(const VectorXd& q) const {
   std::vector<Eigen::Triplet<double>> entries;
   MatrixXd block;

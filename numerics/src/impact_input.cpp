@@ -69,7 +69,9 @@ Eigen::VectorXd checked_diagonal(const Eigen::VectorXd& diagonal) {
 void check_laws_and_samples(std::span<const ContactLaw> laws,
                             std::span<const Index> sampled_contacts) {
   const std::size_t m = laws.size();
-  for (std::size_t j = 0; j < m; ++j) validate(laws[j], "contact " + std::to_string(j));
+  // a law equal to the one before it is valid as that one is (a chain's laws are all one)
+  for (std::size_t j = 0; j < m; ++j)
+    if (j == 0 || !(laws[j] == laws[j - 1])) validate(laws[j], "contact " + std::to_string(j));
   for (Index c : sampled_contacts)
     if (c < 0 || c >= Index(m))
       throw InvalidInput(
@@ -137,18 +139,19 @@ void checked_friction(std::span<const ContactLaw> laws, const TangentialRows* ro
   }
   for (Index j = 0; j < m; ++j) {
     const double mu = laws[std::size_t(j)].friction;
-    const std::string field = "contact " + std::to_string(j) + "'s friction";
-    if (!(std::isfinite(mu) && mu >= 0.0))
-      throw InvalidInput(invalid_value_message(field, mu, "a finite mu >= 0"));
     if (mu == 0.0) continue;
+    const std::string field = "contact " + std::to_string(j) + "'s friction";
+    if (!(std::isfinite(mu) && mu > 0.0))
+      throw InvalidInput(invalid_value_message(field, mu, "a finite mu >= 0"));
     if (!rows || rows->rows_of(j) == 0)
       throw InvalidInput(invalid_value_message(
           field, mu, "0 for a contact without tangential rows (give its rows in TangentialRows)"));
     if (!integrates_friction)
-      throw InvalidInput(invalid_value_message(
-          field, mu,
-          "0 with the " + std::string(integrator) +
-              " integrator, which does not integrate friction; the adaptive one does"));
+      throw InvalidInput(
+          invalid_value_message(field, mu,
+                                "0 with the " + std::string(integrator) +
+                                    " integrator, which does not integrate friction; the adaptive "
+                                    "and impulse-step ones do"));
   }
 }
 

@@ -23,8 +23,12 @@ void LzbImpulseIntegrator::take_steps(const Input& input, ImpactObserver* observ
   prepare(input.diagonal, input.u_minus, input.laws);
   friction_.prepare(input);
   const LawConstants* law = input.laws.data();
-  detail::with_columns(input.H, options().dense_up_to, dense_,
-                       [&](const auto& H) { step(H, law, observer, result); });
+  detail::with_columns(input.H, options().dense_up_to, dense_, [&](const auto& H) {
+    if (friction_.on())
+      step<true>(H, law, observer, result);
+    else
+      step<false>(H, law, observer, result);
+  });
 }
 
 void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,
@@ -264,7 +268,7 @@ void step_friction(ImpulseStepFriction& friction, StepArrays& a, std::size_t ste
 
 }  // namespace
 
-template <class Delassus>
+template <bool Frictional, class Delassus>
 void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
                                 ImpactObserver* observer, ImpactResult& result) {
   Contacts& c = contacts_;
@@ -307,7 +311,7 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
     cut_at_phase_end(a, H, primary, delta_p);
     const std::size_t stepping = a.active_count;
     result.contact_steps += std::int64_t(stepping);
-    if (friction_.on()) step_friction(friction_, a, stepping);
+    if constexpr (Frictional) step_friction(friction_, a, stepping);
     propagate(a, H, stepping);
     const double primary_energy_start = a.energy[primary];
     const double primary_energy_end = update_energies(a, primary, stepping);

@@ -64,7 +64,49 @@ std::vector<Index> sampled_places(std::span<const Index> closed,
   return places;
 }
 
+// Every closed interaction with friction has tangent rows (Relation::tangent_rows).
+void check_tangents(const kernel::NonSmoothDynamicalSystem& system, std::span<const Index> closed,
+                    const std::vector<numerics::ContactLaw>& laws) {
+  for (std::size_t k = 0; k < closed.size(); ++k)
+    if (laws[k].friction > 0.0 && system.interaction(closed[k]).relation().tangent_rows() == 0)
+      throw InvalidInput("interaction '" + system.interaction(closed[k]).name() + "': " +
+                         invalid_value_message("friction", laws[k].friction,
+                                               "0 for a relation without tangent rows (give "
+                                               "them: Relation::tangent_rows)"));
+}
+
 }  // namespace
+
+// The impact with Coulomb friction: H, H_tn and H_tt from one Delassus operator of the normal
+// and tangent columns [W W_t], and v+ = v- + M^-1 (W P + W_t P_t).
+void LzbImpactProblem::solve_with_friction(const kernel::NonSmoothDynamicalSystem& system,
+                                           std::span<const Index> closed, const Eigen::VectorXd& q,
+                                           const Eigen::SparseMatrix<double>& W,
+                                           numerics::ImpactObserver* observer,
+                                           kernel::ImpactReport& report) {
+  numerics::TangentialRows rows;
+  const Eigen::SparseMatrix<double> W_t = system.tangent_matrix(closed, q, rows.first_row);
+  const Index m = W.cols(), r = W_t.cols();
+  Eigen::SparseMatrix<double> columns(W.rows(), m + r);
+  columns.leftCols(m) = W;
+  columns.rightCols(r) = W_t;
+  const numerics::Delassus delassus =
+      system.mass_is_diagonal()
+          ? numerics::Delassus(columns, system.mass_matrix(q).diagonal().cwiseInverse())
+          : numerics::Delassus(columns, system.mass_matrix(q));
+  const Eigen::SparseMatrix<double> H = delassus.H().topLeftCorner(m, m);
+  rows.normal_to_tangent = delassus.H().bottomLeftCorner(r, m);
+  rows.tangent = delassus.H().bottomRightCorner(r, r);
+  rows.slip_minus = W_t.transpose() * report.generalized_velocity_before;
+  const Eigen::VectorXd& u_minus = report.velocity_before;
+  report.result = integrator_->integrate(H, u_minus, laws_, rows, observer);
+  report.velocity_resolution =
+      integrator_->velocity_resolution(Eigen::VectorXd(H.diagonal()), u_minus);
+  Eigen::VectorXd impulses(m + r);
+  impulses << report.result.impulse, report.result.tangential_impulse;
+  report.generalized_velocity_after =
+      report.generalized_velocity_before + delassus.mobility() * impulses;
+}
 
 kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& system,
                                              std::span<const Index> closed, double time) {
@@ -77,26 +119,35 @@ kernel::ImpactReport LzbImpactProblem::solve(kernel::NonSmoothDynamicalSystem& s
     laws_.push_back(static_cast<const LzbLaw&>(system.interaction(j).law()).contact_law());
 
   const Eigen::SparseMatrix<double> W = system.jacobian_matrix(closed, q);
-  const numerics::Delassus delassus =
-      system.mass_is_diagonal()
-          ? numerics::Delassus(W, system.mass_matrix(q).diagonal().cwiseInverse())
-          : numerics::Delassus(W, system.mass_matrix(q));
-  const Eigen::VectorXd u_minus = W.transpose() * report.generalized_velocity_before;
+  const bool frictional =
+      std::any_of(laws_.begin(), laws_.end(),
+                  [](const numerics::ContactLaw& law) { return law.friction > 0.0; });
   std::optional<InteractionSamples> samples;
   if (observer_) {
     samples.emplace(closed, *observer_);
     const std::vector<Index>& sampled = options_.impulse_steps.sampled_contacts;
     if (!sampled.empty()) integrator_->set_sampled_contacts(sampled_places(closed, sampled));
   }
-  report.result = integrator_->integrate(delassus, u_minus, laws_, samples ? &*samples : nullptr);
-  report.time = time;
-  report.interactions.assign(closed.begin(), closed.end());
-  report.velocity_before = u_minus;
-  report.velocity_resolution =
-      integrator_->velocity_resolution(Eigen::VectorXd(delassus.H().diagonal()), u_minus);
-  if (report.result.status == numerics::ImpactStatus::terminated) {
+  numerics::ImpactObserver* observer = samples ? &*samples : nullptr;
+  report.velocity_before = W.transpose() * report.generalized_velocity_before;
+  const Eigen::VectorXd& u_minus = report.velocity_before;
+  if (frictional) {
+    check_tangents(system, closed, laws_);
+    solve_with_friction(system, closed, q, W, observer, report);
+  } else {
+    const numerics::Delassus delassus =
+        system.mass_is_diagonal()
+            ? numerics::Delassus(W, system.mass_matrix(q).diagonal().cwiseInverse())
+            : numerics::Delassus(W, system.mass_matrix(q));
+    report.result = integrator_->integrate(delassus, u_minus, laws_, observer);
+    report.velocity_resolution =
+        integrator_->velocity_resolution(Eigen::VectorXd(delassus.H().diagonal()), u_minus);
     report.generalized_velocity_after =
         report.generalized_velocity_before + delassus.mobility() * report.result.impulse;
+  }
+  report.time = time;
+  report.interactions.assign(closed.begin(), closed.end());
+  if (report.result.status == numerics::ImpactStatus::terminated) {
     system.scatter_state(q, report.generalized_velocity_after);
   } else {
     report.generalized_velocity_after = report.generalized_velocity_before;  // no outcome

@@ -247,14 +247,21 @@ void bind_bodies(py::module_& module) {
 void bind_interactions(py::module_& module) {
   py::class_<kernel::Relation, std::shared_ptr<kernel::Relation>>(module, "Relation");
   py::class_<kernel::LinearRelation, kernel::Relation, std::shared_ptr<kernel::LinearRelation>>(
-      module, "LinearRelation", "the gap g = C q + e on the stacked coordinates of the bodies")
-      .def(py::init<kernel::RowVectorXd, double>(), py::arg("C"), py::arg("e"));
+      module, "LinearRelation",
+      "the gap g = C q + e on the stacked coordinates of the bodies; `tangents`, 1 or 2 rows of "
+      "C's size, the contact points' slip s = T v of a contact with friction")
+      .def(py::init([](kernel::RowVectorXd C, double e, std::optional<Eigen::MatrixXd> tangents) {
+             return std::make_shared<kernel::LinearRelation>(std::move(C), e,
+                                                             tangents.value_or(Eigen::MatrixXd()));
+           }),
+           py::arg("C"), py::arg("e"), py::kw_only(), py::arg("tangents") = py::none());
 
   py::class_<kernel::NonSmoothLaw, std::shared_ptr<kernel::NonSmoothLaw>>(module, "NonSmoothLaw");
   py::class_<plugins::LzbLaw, kernel::NonSmoothLaw, std::shared_ptr<plugins::LzbLaw>>(
       module, "LzbLaw",
       "the LZB contact law: stiffness K (N/m^eta), exponent eta (1.5), restitution e (1), "
-      "model 'bi-stiffness' or 'mono-stiffness'")
+      "model 'bi-stiffness' or 'mono-stiffness', friction mu (0; > 0 on a relation with "
+      "tangents)")
       .def(py::init([](const py::kwargs& fields) {
         return std::make_shared<plugins::LzbLaw>(contact_law(fields));
       }));
@@ -311,6 +318,12 @@ void bind_reports(py::module_& module) {
       .def_property_readonly("time_of_max_force", of_result(&ImpactResult::time_of_max_force))
       .def_property_readonly("work", of_result(&ImpactResult::work))
       .def_property_readonly("stored_energy", of_result(&ImpactResult::stored_energy))
+      .def_property_readonly("tangential_impulse", of_result(&ImpactResult::tangential_impulse),
+                             "N s per tangent row of the interactions with friction")
+      .def_property_readonly("slip_after", of_result(&ImpactResult::slip),
+                             "m/s, the contact points' slip per tangent row after the impact")
+      .def_property_readonly("slip_work", of_result(&ImpactResult::slip_work),
+                             "J per interaction, what slip dissipated")
       .def_property_readonly("steps", of_result(&ImpactResult::steps))
       .def_property_readonly("duration", of_result(&ImpactResult::duration))
       .def_readonly("wall_time", &kernel::ImpactReport::wall_time);

@@ -117,3 +117,55 @@ def test_bad_input_names_the_field():
         simulation = mimpact.Simulation(system)
         simulation.add_observer(on_step=lambda state, step: 42)
         simulation.run(0.0, 1.0)
+
+
+@pytest.mark.parametrize("degrees, mu", [(10.0, 0.5), (60.0, 0.05), (30.0, 0.2)])
+def test_a_spinning_ball_on_a_rough_floor_meets_the_closed_form(degrees, mu):
+    """A solid ball (x, y, angle) strikes a rough floor at incidence theta with top spin, the
+    floor's tangent row T = (1, 0, R) giving the slip s = v_x + R w. P_n = (1 + e) m V cos(theta);
+    the ball leaves rolling (s+ = 0, v_x+ = v_x - 2/7 s-) unless its slip outlasts the impact,
+    |s-| >= 7/2 mu (1 + e) V cos(theta), where v_x drops by mu (1 + e) V cos(theta)
+    (docs/model.md, section 16)."""
+    mass, radius, speed, spin, e = 0.17, 0.0286, 2.0, 20.0, 0.6
+    inertia = 0.4 * mass * radius**2
+    theta = math.radians(degrees)
+    v = [speed * math.sin(theta), -speed * math.cos(theta), spin]
+    ball = mimpact.LagrangianLinearTIDS([0.0, radius, 0.0], v,
+                                        np.diag([mass, mass, inertia]).tolist(), name="ball")
+    law = mimpact.LzbLaw(stiffness=1e9, restitution=e, friction=mu)
+    floor = mimpact.LinearRelation([0.0, 1.0, 0.0], -radius, tangents=[[1.0, 0.0, radius]])
+    system = mimpact.NonSmoothDynamicalSystem()
+    system.add(ball)
+    system.add(mimpact.Interaction(ball, floor, law, "floor"))
+    simulation = mimpact.Simulation(system, integrator="event-driven",
+                                    impact_options={"integrator": "adaptive", "tolerance": 1e-12})
+    impacts = []
+    simulation.add_observer(on_impact=lambda state, impact: impacts.append(impact))
+    simulation.run(0.0, 1e-3)
+    assert len(impacts) == 1
+    after = ball.velocity
+    normal, slip = speed * math.cos(theta), v[0] + radius * spin
+    drop = mu * (1 + e) * normal
+    if abs(slip) >= 3.5 * drop:
+        expected_vx, expected_slip = v[0] - math.copysign(drop, slip), slip - math.copysign(3.5 * drop, slip)
+    else:
+        expected_vx, expected_slip = v[0] - slip / 3.5, 0.0
+    assert after[1] == pytest.approx(e * normal, abs=1e-9 * speed)
+    assert after[0] == pytest.approx(expected_vx, abs=1e-9 * speed)
+    assert impacts[0].slip_after[0] == pytest.approx(expected_slip, abs=1e-9 * speed)
+    assert after[0] + radius * after[2] == pytest.approx(expected_slip, abs=1e-9 * speed)
+    assert impacts[0].slip_work[0] > 0.0
+
+
+def test_friction_on_a_relation_without_tangents_is_refused():
+    ball = mimpact.LagrangianLinearTIDS([0.01], [-1.0], [[0.1]], name="ball")
+    system = mimpact.NonSmoothDynamicalSystem()
+    system.add(ball)
+    system.add(mimpact.Interaction(ball, mimpact.LinearRelation([1.0], -0.01),
+                                   mimpact.LzbLaw(stiffness=1e9, friction=0.3), "floor"))
+    simulation = mimpact.Simulation(system, integrator="event-driven",
+                                    impact_options={"integrator": "adaptive"})
+    with pytest.raises(ValueError, match="interaction 'floor': friction = 0.3"):
+        simulation.run(0.0, 1e-3)
+    with pytest.raises(ValueError, match="tangent rows"):
+        mimpact.LinearRelation([1.0, 0.0], 0.0, tangents=[[1.0, 0.0, 0.0]])

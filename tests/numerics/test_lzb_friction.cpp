@@ -443,7 +443,7 @@ TEST(FrictionalImpact, BadFrictionInputIsRefused) {
   const ContactLaw negative[] = {{.stiffness = 1e9, .friction = -0.1}};
   EXPECT_NE(message([&] {
               adaptive.integrate(one_by_one(c.h_nn()), u, negative);
-            }).find("a finite mu >= 0"),
+            }).find("contact 0: friction mu = -0.1 is invalid; allowed: >= 0"),
             std::string::npos);
   TangentialRows rows{.normal_to_tangent = one_by_one(0.0),
                       .tangent = one_by_one(-1.0),

@@ -56,6 +56,10 @@ class NonSmoothDynamicalSystem {
   // W restricted to `subset`: dof() x subset.size(), column k for interaction subset[k].
   Eigen::SparseMatrix<double> jacobian_matrix(std::span<const Index> subset,
                                               const VectorXd& q) const;
+  // The tangent rows of `subset`'s relations (Relation::tangent_jacobian): dof() x rows, the
+  // rows of subset[k] from first_row[k] (subset.size() + 1 offsets, written here).
+  Eigen::SparseMatrix<double> tangent_matrix(std::span<const Index> subset, const VectorXd& q,
+                                             std::vector<Index>& first_row) const;
   // The block-diagonal global mass matrix at q.
   Eigen::SparseMatrix<double> mass_matrix(const VectorXd& q) const;
 

@@ -23,6 +23,15 @@ class Relation {
   virtual double jacobian_rate(const VectorXd& q, const VectorXd& v) const = 0;
   // True when W is constant: the contact geometry does not change with q.
   virtual bool is_linear() const = 0;
+  // A contact that can rub (docs/model.md, section 16) has tangent directions: 1 in the plane,
+  // 2 in space; 0 (the default) a frictionless one. Row r of `rows`, already tangent_rows() x
+  // q.size(), is the gradient of the contact points' relative slip along tangent r at q:
+  // s_r = rows.row(r) v, lever arms included.
+  virtual int tangent_rows() const { return 0; }
+  virtual void tangent_jacobian(const VectorXd& q, Eigen::MatrixXd& rows) const {
+    (void)q;
+    (void)rows;
+  }
 };
 
 }  // namespace mimpact::kernel

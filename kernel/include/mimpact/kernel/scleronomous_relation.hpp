@@ -15,6 +15,8 @@ class ScleronomousRelation : public Relation {
   using Gap = std::function<double(const VectorXd& q)>;
   using Jacobian = std::function<void(const VectorXd& q, RowVectorXd& row)>;
   using Rate = std::function<double(const VectorXd& q, const VectorXd& v)>;
+  // writes the tangent rows (tangent_rows() x q.size(), already sized)
+  using Tangents = std::function<void(const VectorXd& q, Eigen::MatrixXd& rows)>;
 
   ScleronomousRelation(Gap gap, Jacobian jacobian, Rate rate = {});
 
@@ -22,11 +24,20 @@ class ScleronomousRelation : public Relation {
   void jacobian(const VectorXd& q, RowVectorXd& row) const override { jacobian_(q, row); }
   double jacobian_rate(const VectorXd& q, const VectorXd& v) const override;
   bool is_linear() const override { return false; }
+  // The contact's tangent directions (Relation::tangent_jacobian): `rows` of them (1 or 2),
+  // given by `tangents`. Throws InvalidInput for another count or an empty callable.
+  void set_tangents(int rows, Tangents tangents);
+  int tangent_rows() const override { return tangent_rows_; }
+  void tangent_jacobian(const VectorXd& q, Eigen::MatrixXd& rows) const override {
+    tangents_(q, rows);
+  }
 
  private:
   Gap gap_;
   Jacobian jacobian_;
   Rate rate_;
+  int tangent_rows_ = 0;
+  Tangents tangents_;
   mutable VectorXd shifted_;  // finite-difference workspace
   mutable RowVectorXd ahead_, behind_;
 };

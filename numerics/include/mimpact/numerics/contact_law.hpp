@@ -28,9 +28,12 @@ struct ContactLaw {
   double exponent = 1.5;     // eta > 0: 1 a linear spring, 3/2 Hertz
   double restitution = 1.0;  // e in [0, 1]
   ComplianceModel model = ComplianceModel::bi_stiffness;
-  // mu >= 0, Coulomb's coefficient of a contact with tangential rows (TangentialRows); 0:
-  // frictionless. Read by the integrators that integrate friction (ImpactIntegrator).
+  // mu >= 0, Coulomb's coefficient of a contact with tangential rows (TangentialRows; in the
+  // kernel, a relation with tangent rows); 0: frictionless. Read by the integrators that
+  // integrate friction (ImpactIntegrator::integrates_friction).
   double friction = 0.0;
+
+  bool operator==(const ContactLaw&) const = default;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -39,6 +42,8 @@ struct ContactLaw {
     field("restitution", self.restitution,
           within(0.0, 1.0).described("0 <= e <= 1").with_symbol("e"));
     field("model", self.model);
+    field("friction", self.friction,
+          at_least(0.0, "Coulomb's coefficient; 0 frictionless").with_symbol("mu"));
   }
 
   // Below this restitution the energy a contact gives back, e^2 of its compression work, is

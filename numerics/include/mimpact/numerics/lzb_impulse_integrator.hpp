@@ -58,7 +58,8 @@ class LzbImpulseIntegrator : public ImpulseStepIntegrator {
   void take_steps(const Input& input, ImpactObserver* observer, ImpactResult& result) override;
 
  private:
-  template <class Delassus>
+  // the step loop, its frictional stage compiled in only where the impact has friction
+  template <bool Frictional, class Delassus>
   void step(const Delassus& H, const LawConstants* law, ImpactObserver* observer,
             ImpactResult& result);
   void prepare(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& u_minus,

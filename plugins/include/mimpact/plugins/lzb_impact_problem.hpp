@@ -11,7 +11,9 @@ namespace mimpact::plugins {
 
 // The multiple impact among closed contacts with LZB laws: H = W_c^T M^-1 W_c assembled over
 // the closed contacts (M factorized by CHOLMOD when it is not diagonal), the LZB impulse
-// integration, and v+ = v- + M^-1 W_c P. Registered as "lzb".
+// integration, and v+ = v- + M^-1 W_c P. With friction (a law's friction > 0, its relation's
+// tangent rows W_t) the operator of [W_c W_t] and v+ = v- + M^-1 (W_c P + W_t P_t)
+// (docs/model.md, section 16). Registered as "lzb".
 class LzbImpactProblem : public kernel::ImpactProblem {
  public:
   using Options = LzbImpactOptions;
@@ -30,6 +32,11 @@ class LzbImpactProblem : public kernel::ImpactProblem {
   const LzbImpactOptions& options() const { return options_; }
 
  private:
+  void solve_with_friction(const kernel::NonSmoothDynamicalSystem& system,
+                           std::span<const kernel::Index> closed, const Eigen::VectorXd& q,
+                           const Eigen::SparseMatrix<double>& W, numerics::ImpactObserver* observer,
+                           kernel::ImpactReport& report);
+
   LzbImpactOptions options_;
   std::unique_ptr<numerics::ImpactIntegrator> integrator_;
   std::vector<numerics::ContactLaw> laws_;
