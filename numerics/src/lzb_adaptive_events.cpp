@@ -4,7 +4,6 @@
 
 #include "lzb_adaptive_impact.hpp"
 #include "mimpact/numerics/event_scan.hpp"
-#include "mimpact/numerics/root_bracketing.hpp"
 
 // The adaptive LZB's switches located as events (docs/design/adaptive_lzb.md): each member's
 // watched quantity sampled over a step and its crossings narrowed by TOMS 748 on the dense
@@ -60,23 +59,17 @@ void adaptive_lzb::Impact::locate(double t0, double t1, const Watched& before, c
     within_.locate_turns(t0, t1, before, after);
     return;
   }
-  const double resolution = 4.0 * DBL_EPSILON * t1;
   auto check = [&](std::size_t member, int kind) {
-    const double q0 = watched_value(member, kind, before);
-    const double q1 = watched_value(member, kind, after);
-    if (q1 > 0.0 || (q0 <= 0.0 && t0 != segment_start_)) return;
-    double crossing = t0;
-    if (q0 > 0.0) {
-      // this member's value alone: one column of H, not all the members' velocities (a
-      // packing keeps hundreds of contacts in the impact, and every narrowing step asked for
-      // all of them)
-      auto q = [&](double t) {
-        ode_.state_at(t, shared_.segment.y_at);
-        return member_value(member, kind, shared_.segment.y_at);
-      };
-      crossing = narrow_crossing(q, t0, t1, q0, q1, resolution).upper;
-    }
-    found.push_back({long(member), kind, crossing});
+    // this member's value alone: one column of H, not all the members' velocities (a packing
+    // keeps hundreds of contacts in the impact, and every narrowing step asked for all of them)
+    auto q = [&](double t) {
+      ode_.state_at(t, shared_.segment.y_at);
+      return member_value(member, kind, shared_.segment.y_at);
+    };
+    if (const std::optional<double> crossing =
+            crossing_time(watched_value(member, kind, before), watched_value(member, kind, after),
+                          t0, t1, segment_start_, q))
+      found.push_back({long(member), kind, *crossing});
   };
   for (std::size_t p = 0; p < shared_.segment.members.size(); ++p) {
     switch (shared_.contact.phase[shared_.segment.members[p]]) {

@@ -1,10 +1,7 @@
 #include "lzb_adaptive_friction.hpp"
 
-#include <cfloat>
 #include <cmath>
 #include <limits>
-
-#include "mimpact/numerics/root_bracketing.hpp"
 
 namespace mimpact::numerics::adaptive_lzb {
 
@@ -289,23 +286,19 @@ double Friction::value(std::size_t member, int which, const State& y) {
 
 void Friction::locate(double t0, double t1, double segment_start, const std::vector<double>& before,
                       const std::vector<double>& after, std::vector<Crossing>& found) {
-  const double resolution = 4.0 * DBL_EPSILON * t1;
   for (std::size_t f = 0; f < members_.size(); ++f)
     for (int which = 0; which < 2; ++which) {
-      const double q0 = before[2 * f + std::size_t(which)];
-      const double q1 = after[2 * f + std::size_t(which)];
-      if (q1 > 0.0 || (q0 <= 0.0 && t0 != segment_start)) continue;
-      double crossing = t0;
-      if (q0 > 0.0) {
-        auto q = [&](double t) {
-          ode_.state_at(t, impact_.segment.y_at);
-          return value(f, which, impact_.segment.y_at);
-        };
-        crossing = narrow_crossing(q, t0, t1, q0, q1, resolution).upper;
-      }
+      auto q = [&](double t) {
+        ode_.state_at(t, impact_.segment.y_at);
+        return value(f, which, impact_.segment.y_at);
+      };
+      const std::optional<double> crossing =
+          crossing_time(before[2 * f + std::size_t(which)], after[2 * f + std::size_t(which)], t0,
+                        t1, segment_start, q);
+      if (!crossing) continue;
       const bool stuck = contacts_[std::size_t(members_[f].contact)].mode == Mode::stick;
       const int kind = which == 1 ? slip_armed : stuck ? stick_end : slip_stop;
-      found.push_back({long(f), kind, crossing});
+      found.push_back({long(f), kind, *crossing});
     }
 }
 
