@@ -5,7 +5,8 @@ The golden scenes are the example scenes (chains C1-C3 under every method and in
 paper's scenes as they are, the 10 x 10 hexagonal packing) and the packing study's scenes at
 sizes that run in seconds (hexagonal 16 x 16 and FCC 6^3 in the moving geometry, elastic and
 inelastic; the frozen geometry; a square packing under LZB). A file is the same when it is
-equal to the bit but for the measured wall time; otherwise the script prints the largest
+equal to the bit but for the measured wall time and the keys a later version adds to
+summary.json; otherwise the script prints the largest
 difference of its numbers, which must stay within 1e-12 of the striker's speed (1 m/s in every
 golden scene) where operations were reordered.
 
@@ -123,12 +124,23 @@ def strip_ignored(value):
     return value
 
 
+def old_keys_only(old, new):
+    """`new` without the keys `old` lacks: what a later version adds is not a change."""
+    if isinstance(old, dict) and isinstance(new, dict):
+        return {k: old_keys_only(old[k], v) for k, v in new.items() if k in old}
+    if isinstance(old, list) and isinstance(new, list) and len(old) == len(new):
+        return [old_keys_only(a, b) for a, b in zip(old, new)]
+    return new
+
+
 def difference(old_file, new_file):
-    """None if the same but for wall time; else the largest difference of their numbers."""
+    """None if the same but for wall time and added keys; else the largest difference of their
+    numbers."""
     old, new = old_file.read_text(), new_file.read_text()
     if old_file.suffix == ".json":
-        old = json.dumps(strip_ignored(json.loads(old)))
-        new = json.dumps(strip_ignored(json.loads(new)))
+        old_json = strip_ignored(json.loads(old))
+        old = json.dumps(old_json)
+        new = json.dumps(old_keys_only(old_json, strip_ignored(json.loads(new))))
     if old_file.name == "stderr.txt":  # the report's seconds of computation
         old, new = (re.sub(r"in [0-9.e+-]+ s of computation", "", t) for t in (old, new))
     if old == new:

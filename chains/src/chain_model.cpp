@@ -105,7 +105,12 @@ ChainModel build_chain_model(const ChainScene& scene, const granular::RunLimits&
   }
 
   std::vector<Eigen::Triplet<double>> gradients;
-  auto add_law = [&](double stiffness) { model.laws.push_back(scene.contact.law(stiffness)); };
+  // A chain's beads move along its line and do not spin: its contacts never slip, so friction
+  // takes no impulse there (docs/model.md, section 16) and the laws leave it out.
+  auto add_law = [&](double stiffness) {
+    model.laws.push_back(scene.contact.law(stiffness));
+    model.laws.back().friction = 0.0;
+  };
   for (Eigen::Index i = 0; i + 1 < n; ++i) {
     gradients.emplace_back(i, i, -1.0);
     gradients.emplace_back(i + 1, i, 1.0);

@@ -12,6 +12,22 @@ double kinetic_energy(const ContactModel& model, const Eigen::VectorXd& velocity
   return 0.5 * model.mass.dot(velocity.cwiseAbs2());
 }
 
+void split_velocities(const ContactModel& model, const Eigen::VectorXd& generalized,
+                      Eigen::VectorXd& velocity, Eigen::VectorXd& angular_velocity) {
+  if (!model.rotation) {
+    velocity = generalized;
+    angular_velocity.resize(0);
+    return;
+  }
+  const int d = model.dimension, r = model.rotation->components;
+  velocity.resize(model.mass.size());
+  angular_velocity.resize(r * model.body_count());
+  for (Eigen::Index b = 0; b < model.body_count(); ++b) {
+    velocity.segment(d * b, d) = generalized.segment((d + r) * b, d);
+    angular_velocity.segment(r * b, r) = generalized.segment((d + r) * b + d, r);
+  }
+}
+
 double lone_overlap(const ContactModel& model, Eigen::Index j) {
   const double u = model.u_minus(j);
   const numerics::ContactLaw& law = model.laws[std::size_t(j)];

@@ -8,8 +8,8 @@
 namespace mimpact::granular {
 
 double EnergyLedger::imbalance() const {
-  return kinetic_before + potential_before + work_of_forces -
-         (kinetic_after + dissipated_total + potential_left);
+  return kinetic_before + rotational_before + potential_before + work_of_forces -
+         (kinetic_after + rotational_after + dissipated_total + potential_left);
 }
 
 EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impact) {
@@ -26,6 +26,13 @@ EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impac
   ledger.potential_before = stored_before.sum();
   ledger.work_of_forces = impact.work_of_forces;
   ledger.dissipated = impact.result.work + stored_before - stored_after;
+  if (model.rotation) {
+    ledger.rotational_before = rotational_energy(*model.rotation, model.rotation->angular_velocity);
+    ledger.rotational_after = rotational_energy(*model.rotation, impact.angular_velocity_after);
+    ledger.slip =
+        impact.result.slip_work.size() == m ? impact.result.slip_work : Eigen::VectorXd::Zero(m);
+    ledger.dissipated += ledger.slip;
+  }
   ledger.dissipated_total = ledger.dissipated.sum();
   ledger.potential_left = stored_after.sum();
   return ledger;
@@ -33,13 +40,21 @@ EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impac
 
 nlohmann::ordered_json ledger_json(const EnergyLedger& ledger) {
   const Eigen::VectorXd& d = ledger.dissipated;
-  return {{"kinetic_before", ledger.kinetic_before},
-          {"potential_before", ledger.potential_before},
-          {"work_of_forces", ledger.work_of_forces},
-          {"kinetic_after", ledger.kinetic_after},
-          {"dissipated", std::vector<double>(d.data(), d.data() + d.size())},
-          {"dissipated_total", ledger.dissipated_total},
-          {"potential_left", ledger.potential_left}};
+  nlohmann::ordered_json json{{"kinetic_before", ledger.kinetic_before},
+                              {"potential_before", ledger.potential_before},
+                              {"work_of_forces", ledger.work_of_forces},
+                              {"kinetic_after", ledger.kinetic_after},
+                              {"dissipated", std::vector<double>(d.data(), d.data() + d.size())},
+                              {"dissipated_total", ledger.dissipated_total},
+                              {"potential_left", ledger.potential_left}};
+  if (ledger.slip.size() > 0 || ledger.rotational_before > 0.0) {  // the bodies turn
+    const Eigen::VectorXd& slip = ledger.slip;
+    json["rotational_before"] = ledger.rotational_before;
+    json["rotational_after"] = ledger.rotational_after;
+    json["slip"] = std::vector<double>(slip.data(), slip.data() + slip.size());
+    json["slip_total"] = slip.sum();
+  }
+  return json;
 }
 
 }  // namespace mimpact::granular

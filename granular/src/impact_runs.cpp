@@ -40,7 +40,10 @@ class Impacts : public kernel::SimulationObserver {
   ImpactOutcome result() {
     if (result_.impact_times.empty())
       throw Error("the strikers never reached their targets within the simulated time");
+    split_velocities(model_, generalized_after_, result_.velocity_after,
+                     result_.angular_velocity_after);
     total_.velocity = model_.W.transpose() * result_.velocity_after;
+    if (model_.rotation) total_.slip = slip(*model_.rotation);
     result_.result = total_;
     return result_;
   }
@@ -68,18 +71,48 @@ class Impacts : public kernel::SimulationObserver {
         total_.time_of_max_force(j) = offset + impact.time_of_max_force(i);
       }
     }
+    if (model_.rotation) add_tangential(report);
     total_.steps += impact.steps;
     total_.contact_steps += impact.contact_steps;
     total_.residual_energy += impact.residual_energy;
     total_.duration = offset + impact.duration;
     result_.wall_time += report.wall_time;
     result_.impact_times.push_back(report.time);
-    result_.velocities_before.push_back(report.generalized_velocity_before);
-    result_.velocity_after = report.generalized_velocity_after;
+    Eigen::VectorXd before, angular_before;
+    split_velocities(model_, report.generalized_velocity_before, before, angular_before);
+    result_.velocities_before.push_back(std::move(before));
+    generalized_after_ = report.generalized_velocity_after;
+  }
+
+  // The tangential impulses of the impact's rows (its contacts' rows, in its order) added to
+  // the model's rows, and its slip work to its contacts'.
+  void add_tangential(const kernel::ImpactReport& report) {
+    const numerics::TangentialRows& rows = model_.rotation->tangential;
+    if (total_.tangential_impulse.size() == 0) {
+      total_.tangential_impulse = Eigen::VectorXd::Zero(rows.rows());
+      total_.slip_work = Eigen::VectorXd::Zero(model_.contact_count());
+    }
+    const numerics::ImpactResult& impact = report.result;
+    if (impact.tangential_impulse.size() == 0) return;
+    Eigen::Index local = 0;
+    for (std::size_t k = 0; k < report.interactions.size(); ++k) {
+      const auto j = Eigen::Index(report.interactions[k]);
+      const Eigen::Index first = rows.first_row[std::size_t(j)];
+      for (int r = 0; r < rows.rows_of(j); ++r)
+        total_.tangential_impulse(first + r) += impact.tangential_impulse(local++);
+      total_.slip_work(j) += impact.slip_work(Eigen::Index(k));
+    }
+  }
+
+  // every row's slip after the last impact, from the bodies' velocities
+  Eigen::VectorXd slip(const Rotation& rotation) const {
+    return rotation.W_t.transpose() * result_.velocity_after +
+           rotation.R_t.transpose() * result_.angular_velocity_after;
   }
 
   const ContactModel& model_;
   double last_arrival_;
+  Eigen::VectorXd generalized_after_;
   numerics::ImpactResult total_;
   ImpactOutcome result_;
 };
@@ -120,11 +153,24 @@ ImpactOutcome simulate_impact_numerics(const ContactModel& model,
   numerics::LzbImpulseIntegrator integrator(options);
   ImpactOutcome impact;
   const auto start = std::chrono::steady_clock::now();
-  impact.result = integrator.integrate(model.H, model.u_minus, model.laws, observer);
+  impact.result = model.rotation
+                      ? integrator.integrate(model.H, model.u_minus, model.laws,
+                                             model.rotation->tangential, observer)
+                      : integrator.integrate(model.H, model.u_minus, model.laws, observer);
   impact.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   impact.velocity_after =
       model.velocity + (model.W * impact.result.impulse).cwiseQuotient(model.mass);
+  if (model.rotation) {  // + M^-1 W_t P_t, and omega+ = omega- + I^-1 R_t P_t
+    const Rotation& rotation = *model.rotation;
+    const Eigen::VectorXd& tangential = impact.result.tangential_impulse;
+    impact.velocity_after += (rotation.W_t * tangential).cwiseQuotient(model.mass);
+    impact.angular_velocity_after = rotation.R_t * tangential;
+    for (Eigen::Index b = 0; b < rotation.body_count(); ++b)
+      impact.angular_velocity_after.segment(rotation.components * b, rotation.components) /=
+          rotation.inertia(b);
+    impact.angular_velocity_after += rotation.angular_velocity;
+  }
   impact.impact_times = {0.0};
   impact.velocities_before = {model.velocity};
   return impact;
@@ -210,6 +256,8 @@ void assemble(const CompliantEngine& engine, const ContactModel& model, Complian
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
     impact.velocity_after.segment(b * d, d) = engine.velocity(b).head(d);
   result.velocity = model.W.transpose() * impact.velocity_after;
+  if (model.rotation)  // frictionless contacts: the spins stay
+    impact.angular_velocity_after = model.rotation->angular_velocity;
   impact.impact_times = {span.start};
   impact.velocities_before = {model.velocity};
   run.most_bodies_in_motion = engine.most_bodies_in_motion();
@@ -224,6 +272,12 @@ CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                 const CompliantSpec& spec, const RecordSpec& record,
                                 int frame_every, const RunLimits& limits) {
+  for (const numerics::ContactLaw& law : model.laws)
+    if (law.friction > 0.0)
+      throw InvalidInput(invalid_value_message(
+          "contact.friction", law.friction,
+          "0 with the compliant method, whose contacts have no tangential force yet; the LZB "
+          "method integrates friction"));
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
   RecordingBudget budget = compliant_budget(model, record, frame_every, limits);

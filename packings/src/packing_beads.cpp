@@ -65,10 +65,29 @@ std::filesystem::path bead_file(const BeadListSpec& list, const std::filesystem:
 
 namespace {
 
+// A bead list's columns: the centre and radius, optionally the velocity, then the spin.
+struct Columns {
+  int dimension;
+  int count;  // dimension + 1, + dimension with velocities, + 1 or 3 with spins
+  std::vector<std::string> names;
+};
+
+// The headers a bead list may have, each with its columns.
+const std::vector<Columns>& bead_list_headers() {
+  static const std::vector<Columns> kHeaders = {
+      {2, 3, {"x", "y", "radius"}},
+      {2, 5, {"x", "y", "radius", "vx", "vy"}},
+      {2, 6, {"x", "y", "radius", "vx", "vy", "wz"}},
+      {3, 4, {"x", "y", "z", "radius"}},
+      {3, 7, {"x", "y", "z", "radius", "vx", "vy", "vz"}},
+      {3, 10, {"x", "y", "z", "radius", "vx", "vy", "vz", "wx", "wy", "wz"}}};
+  return kHeaders;
+}
+
 // "x,y,radius": the header of these columns
-std::string line_of(const char* const* names, int columns) {
+std::string line_of(const std::vector<std::string>& names) {
   std::string line = names[0];
-  for (int k = 1; k < columns; ++k) (line += ",") += names[k];
+  for (std::size_t k = 1; k < names.size(); ++k) (line += ",") += names[k];
   return line;
 }
 
@@ -82,6 +101,21 @@ std::optional<double> number_of(std::string cell) {
   const double value = std::strtod(cell.c_str(), &end);
   if (end != cell.c_str() + cell.size() || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+// The bead of a line's values, in the columns' order.
+Body bead_of(const Columns& columns, const double* values, const granular::Material& material,
+             std::size_t line) {
+  const int d = columns.dimension;
+  Body bead{.centre = vector_of({values[0], values[1], values[2]}, d),
+            .radius = values[d],
+            .material = material,
+            .line = line};
+  if (columns.count > d + 1)
+    bead.velocity = vector_of({values[d + 1], values[d + 2], values[d + 3]}, d);
+  if (columns.count == 6) bead.spin.z() = values[5];
+  if (columns.count == 10) bead.spin = Eigen::Vector3d(values[7], values[8], values[9]);
+  return bead;
 }
 
 }  // namespace
@@ -99,37 +133,36 @@ std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::
   if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
   if (line.find_last_not_of(" \t\r") != std::string::npos)
     line.erase(line.find_last_not_of(" \t\r") + 1);
-  if (line != "x,y,radius" && line != "x,y,z,radius")
-    fail(1, "is not the header; allowed: x,y,radius or x,y,z,radius (m)");
-  const int dimension = line == "x,y,radius" ? 2 : 3;
-  const int columns = dimension + 1;
-  static const char* const kNames[2][4] = {{"x", "y", "radius"}, {"x", "y", "z", "radius"}};
-  const char* const* names = kNames[dimension - 2];
+  const Columns* header = nullptr;
+  std::string allowed;
+  for (const Columns& columns : bead_list_headers()) {
+    if (line == line_of(columns.names)) header = &columns;
+    allowed += (allowed.empty() ? "" : "; ") + line_of(columns.names);
+  }
+  if (!header) fail(1, "is not the header; allowed: " + allowed + " (m, m/s, rad/s)");
+  const std::vector<std::string>& names = header->names;
   std::vector<Body> beads;
   for (std::size_t number = 2; std::getline(in, line); ++number) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     std::istringstream fields(line);
     std::string cell;
-    double values[4];
+    double values[10];
     int count = 0;
     for (; std::getline(fields, cell, ','); ++count) {
-      if (count == columns)
-        fail(number, "more than " + std::to_string(columns) +
-                         " columns; allowed: " + line_of(names, columns));
+      if (count == header->count)
+        fail(number,
+             "more than " + std::to_string(header->count) + " columns; allowed: " + line_of(names));
       const std::optional<double> value = number_of(cell);
-      if (!value) fail(number, std::string("column ") + names[count] + " is not a finite number");
+      if (!value) fail(number, "column " + names[std::size_t(count)] + " is not a finite number");
       values[count] = *value;
     }
-    if (count != columns)
-      fail(number, std::to_string(count) + " columns; allowed: " + line_of(names, columns));
-    const double radius = values[dimension];
+    if (count != header->count)
+      fail(number, std::to_string(count) + " columns; allowed: " + line_of(names));
+    const double radius = values[header->dimension];
     if (!(radius > 0.0)) fail(number, invalid_value_message("radius", radius, "> 0 (m)"));
-    beads.push_back({.centre = vector_of({values[0], values[1], values[2]}, dimension),
-                     .radius = radius,
-                     .material = list.material,
-                     .line = number});
+    beads.push_back(bead_of(*header, values, list.material, number));
     if (beads.size() % 100'000 == 0)
-      granular::check_memory(double(beads.size()) * bead_bytes(dimension),
+      granular::check_memory(double(beads.size()) * bead_bytes(header->dimension),
                              "beads.file (" + std::to_string(beads.size()) + " beads so far)",
                              limits);
   }

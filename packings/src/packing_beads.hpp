@@ -21,6 +21,7 @@ struct Body {
   double radius;
   granular::Material material;
   Vector velocity = Vector::Zero(centre.size());
+  Eigen::Vector3d spin = Eigen::Vector3d::Zero();  // rad/s; about z in the plane
   std::size_t line = 0;  // of a listed bead, in its file (for messages); 0: not listed
 };
 
@@ -41,9 +42,10 @@ double bead_bytes(int dimension);
 // the lattice's sites, row by row (and layer by layer)
 std::vector<Body> lattice_beads(const LatticeSpec& lattice);
 
-// "x,y,radius" (the plane) or "x,y,z,radius" (space), then one bead per line. Messages name the
-// line and column, never their content (a scene from elsewhere must not make mimpact show a
-// file's lines).
+// "x,y,radius" (the plane) or "x,y,z,radius" (space), optionally with the velocity
+// ",vx,vy" (",vx,vy,vz") and then the spin ",wz" (",wx,wy,wz"), then one bead per line. Messages
+// name the line and column, never their content (a scene from elsewhere must not make mimpact show
+// a file's lines).
 std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::path& directory,
                                const granular::RunLimits& limits);
 

@@ -184,15 +184,38 @@ class PackingBuilder {
       const Vector velocity = vector_of(spec.velocity);
       const Vector direction = velocity.normalized();
       const Body& aimed = bodies_[std::size_t(target)];
-      const Vector arrival = aimed.centre - (aimed.radius + spec.radius) * direction;
+      const Vector arrival = aimed.centre + arrival_offset(spec, aimed.radius, direction, name);
       const Eigen::Index body = Eigen::Index(bodies_.size());
       bodies_.push_back({arrival - spec.gap * direction, spec.radius, spec.material, velocity});
+      if (!spec.spin.empty())
+        bodies_.back().spin.tail(spec.spin.size()) =
+            Eigen::Map<const Eigen::VectorXd>(spec.spin.data(), Eigen::Index(spec.spin.size()));
       largest_radius_ = std::max(largest_radius_, spec.radius);
       model_.striker_arrivals.push_back(spec.gap / velocity.norm());
       near(beads, arrival, (spec.radius + largest_radius_) * (1.0 + kTouching),
            [&](Eigen::Index j) { touch_striker(body, j, arrival, name); });
       check_striker_place(body, name);
     }
+  }
+
+  // Where a striker touches its target, from the target's centre: back along its flight, and
+  // across it by its offset (in the plane, to the left of its flight); an offset of the sum of
+  // the radii or more misses the target.
+  Vector arrival_offset(const StrikerSpec& spec, double target_radius, const Vector& direction,
+                        const std::string& name) const {
+    const double reach = target_radius + spec.radius;
+    Vector across = Vector::Zero(direction.size());
+    if (spec.offset.size() == 1)
+      across << -direction(1) * spec.offset[0], direction(0) * spec.offset[0];
+    else if (!spec.offset.empty())
+      across = vector_of(spec.offset);
+    const double offset = across.norm();
+    if (!(offset < reach))
+      throw InvalidInput(invalid_value_message(
+          name + ".offset", spec.offset.size() == 1 ? spec.offset[0] : offset,
+          "|offset| < " + to_text(reach) +
+              " m, the sum of the striker's and its target's radii: further out it misses"));
+    return across - std::sqrt((reach - offset) * (reach + offset)) * direction;
   }
 
   // contact j-striker with the normal at arrival, g = 0 there; an overlap there is an error
@@ -275,6 +298,30 @@ class PackingBuilder {
           "striker whose velocity points at the bead it targets");
     granular::check_impact_scales(model_);
     model_.beads = std::make_shared<const granular::BeadGeometry>(bead_geometry());
+    add_rotation();
+  }
+
+  // The bodies turn when a contact rubs or a body spins (docs/model.md, section 16).
+  void add_rotation() {
+    const int components = model_.dimension == 3 ? 3 : 1;
+    Eigen::VectorXd spin(components * model_.body_count());
+    for (Eigen::Index b = 0; b < model_.body_count(); ++b)
+      spin.segment(components * b, components) = bodies_[std::size_t(b)].spin.tail(components);
+    const bool rubs =
+        std::any_of(model_.laws.begin(), model_.laws.end(),
+                    [](const numerics::ContactLaw& law) { return law.friction > 0.0; });
+    if (!rubs && spin.isZero(0.0)) return;
+    std::vector<granular::RubbingContact> contacts;
+    for (const PackingContact& c : model_.contacts)
+      contacts.push_back({c.first, c.second, point_of(c.normal)});
+    model_.rotation = granular::build_rotation({.dimension = model_.dimension,
+                                                .mass = model_.mass,
+                                                .velocity = model_.velocity,
+                                                .W = model_.W,
+                                                .radius = model_.radius,
+                                                .angular_velocity = spin,
+                                                .contacts = contacts,
+                                                .laws = model_.laws});
   }
 
   // the same bodies as spheres, for the moving geometry
@@ -327,32 +374,76 @@ Eigen::Index body_of_target(const PackingModel& model, const std::vector<int>& t
   return (Eigen::Index(target[0]) * model.rows + target[1]) * model.columns + target[2];
 }
 
+namespace {
+
+// A body's coordinates in the kernel: its translations, then its rotation when the bodies turn
+// (an angle about z in the plane, a rotation vector in space: the impact sees their velocities
+// only).
+std::shared_ptr<kernel::LagrangianLinearTIDS> kernel_body(const PackingModel& model,
+                                                          Eigen::Index b) {
+  const int d = model.dimension;
+  const int r = model.rotation ? model.rotation->components : 0;
+  kernel::LagrangianLinearTIDS::Matrices matrices;
+  Eigen::VectorXd diagonal(d + r), q = Eigen::VectorXd::Zero(d + r), v(d + r);
+  diagonal.head(d).setConstant(model.mass(d * b));
+  q.head(d) = model.position.row(b).transpose();
+  v.head(d) = model.of(model.velocity, b);
+  if (r > 0) {
+    diagonal.tail(r).setConstant(model.rotation->inertia(b));
+    v.tail(r) = model.rotation->of(model.rotation->angular_velocity, b);
+  }
+  matrices.mass = diagonal.asDiagonal();
+  return std::make_shared<kernel::LagrangianLinearTIDS>(q, v, matrices,
+                                                        "body " + std::to_string(b));
+}
+
+// Contact c's tangent rows over its bodies' kernel coordinates (Rotation's W_t and R_t).
+Eigen::MatrixXd kernel_tangents(const PackingModel& model, std::size_t c,
+                                std::initializer_list<Eigen::Index> bodies) {
+  if (!model.rotation) return {};
+  const granular::Rotation& rotation = *model.rotation;
+  const int d = model.dimension, r = rotation.components;
+  const Eigen::Index first = rotation.tangential.first_row[c];
+  Eigen::MatrixXd rows(rotation.tangential.rows_of(Eigen::Index(c)),
+                       Eigen::Index(bodies.size()) * (d + r));
+  for (Eigen::Index row = 0; row < rows.rows(); ++row) {
+    Eigen::Index column = 0;
+    for (Eigen::Index b : bodies) {
+      for (int k = 0; k < d; ++k) rows(row, column++) = rotation.W_t.coeff(d * b + k, first + row);
+      for (int k = 0; k < r; ++k) rows(row, column++) = rotation.R_t.coeff(r * b + k, first + row);
+    }
+  }
+  return rows;
+}
+
+}  // namespace
+
 std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const PackingModel& model) {
   auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
   std::vector<std::shared_ptr<kernel::DynamicalSystem>> bodies;
-  const Eigen::Index n = model.body_count();
-  const int d = model.dimension;
-  for (Eigen::Index b = 0; b < n; ++b) {
-    kernel::LagrangianLinearTIDS::Matrices matrices;
-    matrices.mass = model.mass(d * b) * Eigen::MatrixXd::Identity(d, d);
-    bodies.push_back(std::make_shared<kernel::LagrangianLinearTIDS>(
-        Eigen::VectorXd(model.position.row(b).transpose()),
-        Eigen::VectorXd(model.of(model.velocity, b)), matrices, "body " + std::to_string(b)));
+  for (Eigen::Index b = 0; b < model.body_count(); ++b) {
+    bodies.push_back(kernel_body(model, b));
     system->add(bodies.back());
   }
+  const int coordinates = int(bodies.front()->dimension());
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
     const PackingContact& contact = model.contacts[c];
     const Vector& n_c = contact.normal;
     auto law = std::make_shared<plugins::LzbLaw>(model.laws[c]);
     const std::string name = "contact " + std::to_string(c);
     if (contact.second < 0) {
-      auto relation = std::make_shared<kernel::LinearRelation>(n_c.transpose(), -contact.rest);
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(coordinates);
+      row.head(n_c.size()) = n_c.transpose();
+      auto relation = std::make_shared<kernel::LinearRelation>(
+          row, -contact.rest, kernel_tangents(model, c, {contact.first}));
       system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
                                                         relation, law, name));
     } else {
-      Eigen::RowVectorXd row(2 * d);
-      row << -n_c.transpose(), n_c.transpose();
-      auto relation = std::make_shared<kernel::LinearRelation>(row, -contact.rest);
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(2 * coordinates);
+      row.head(n_c.size()) = -n_c.transpose();
+      row.segment(coordinates, n_c.size()) = n_c.transpose();
+      auto relation = std::make_shared<kernel::LinearRelation>(
+          row, -contact.rest, kernel_tangents(model, c, {contact.first, contact.second}));
       system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
                                                         bodies[std::size_t(contact.second)],
                                                         relation, law, name));
@@ -366,6 +457,26 @@ Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity) {
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
     total += model.mass(model.dimension * b) * model.of(velocity, b);
   return total;
+}
+
+Vector angular_momentum(const PackingModel& model, const Eigen::VectorXd& velocity,
+                        const Eigen::VectorXd& angular_velocity, double time) {
+  const int d = model.dimension;
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (Eigen::Index b = 0; b < model.body_count(); ++b) {
+    const Vector at = model.position.row(b).transpose() + model.of(model.velocity, b) * time;
+    total += model.mass(d * b) * point_of(at).cross(point_of(model.of(velocity, b)));
+    if (angular_velocity.size() == 0) continue;
+    const double inertia = model.rotation->inertia(b);
+    if (d == 2)
+      total.z() += inertia * angular_velocity(b);
+    else
+      total += inertia * Eigen::Vector3d(angular_velocity.segment<3>(3 * b));
+  }
+  if (d == 3) return total;
+  Vector about_z(1);
+  about_z(0) = total.z();
+  return about_z;
 }
 
 }  // namespace mimpact::packings

@@ -72,6 +72,17 @@ nlohmann::ordered_json per_body(const PackingModel& model, const Eigen::VectorXd
   return list;
 }
 
+// About the origin, with the bodies where the first impact found them (packing_model.hpp).
+nlohmann::ordered_json angular_momentum_json(const PackingModel& model,
+                                             const granular::ImpactOutcome& impact) {
+  const Eigen::VectorXd before =
+      model.rotation ? model.rotation->angular_velocity : Eigen::VectorXd();
+  const double t = impact.impact_time;
+  return {{"before", components(angular_momentum(model, model.velocity, before, t))},
+          {"after", components(angular_momentum(model, impact.velocity_after,
+                                                impact.angular_velocity_after, t))}};
+}
+
 std::string method_name(const PackingScene& scene, const granular::SceneRun& run) {
   if (scene.adaptive())
     return "adaptive LZB, tolerance " + to_text(run.options.adaptive_tolerance());
@@ -105,6 +116,23 @@ std::string step_work(const granular::ImpactOutcome& impact,
 // the contacts the impact reached: those that carried a force
 Eigen::Index contacts_reached(const granular::ImpactOutcome& impact) {
   return Eigen::Index((impact.result.max_force.array() > 0.0).count());
+}
+
+// per body: its angular velocity, a number (about z) in the plane, [wx, wy, wz] in space; 0
+// for bodies that do not turn
+nlohmann::ordered_json per_body_turning(const PackingModel& model,
+                                        const Eigen::VectorXd& angular_velocity) {
+  const int count = model.dimension == 3 ? 3 : 1;
+  const Eigen::VectorXd turning = angular_velocity.size() > 0
+                                      ? angular_velocity
+                                      : Eigen::VectorXd::Zero(count * model.body_count());
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (Eigen::Index b = 0; b < model.body_count(); ++b)
+    if (count == 1)
+      list.push_back(turning(b));
+    else
+      list.push_back(components(Vector(turning.segment(3 * b, 3))));
+  return list;
 }
 
 nlohmann::ordered_json configuration_json(
@@ -181,6 +209,13 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
     entry["max_force"] = impact.result.max_force(c);
     entry["time_of_max"] = impact.result.time_of_max_force(c);
     entry["impulse"] = impact.result.impulse(c);
+    if (model.rotation && model.rotation->tangential.rows_of(c) > 0) {
+      const Eigen::Index first = model.rotation->tangential.first_row[std::size_t(c)];
+      const int rows = model.rotation->tangential.rows_of(c);
+      entry["tangential_impulse"] =
+          components(Vector(impact.result.tangential_impulse.segment(first, rows)));
+      entry["slip_after"] = components(Vector(impact.result.slip.segment(first, rows)));
+    }
     contacts.push_back(entry);
   }
   const Eigen::VectorXd& after = impact.velocity_after;
@@ -200,6 +235,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"beads", model.bead_count},
       {"bodies", model.body_count()},
       {"post_impact_velocities", per_body(model, after)},
+      {"post_impact_angular_velocities", per_body_turning(model, impact.angular_velocity_after)},
       {"body_impulses", per_body(model, body_impulses)},
       {"steps", impact.result.steps},
       // the LZB integrators' work; the compliant contacts' is moving_geometry's
@@ -216,6 +252,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"momentum",
        {{"before", components(momentum(model, model.velocity))},
         {"after", components(momentum(model, after))}}},
+      {"angular_momentum", angular_momentum_json(model, impact)},
       {"energy", granular::ledger_json(granular::energy_ledger(model, impact))},
       {"wall_time", impact.wall_time},
       {"configuration_check", configuration_json(run.configuration)},

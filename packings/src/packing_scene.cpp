@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mimpact/common/error.hpp"
+#include "mimpact/kernel/json_document.hpp"
 
 namespace mimpact::packings {
 
@@ -95,6 +96,35 @@ void check_walls(const PackingScene& scene, const SceneChecks& checks) {
   }
 }
 
+// A striker's offset or spin given as a number: [number], the plane's form of the vector;
+// neither a number nor an array is refused as such.
+void numbers_as_vectors(json& document, const SceneChecks& checks) {
+  json* strikers =
+      document.is_object() && document.contains("strikers") ? &document["strikers"] : nullptr;
+  if (!strikers || !strikers->is_array()) return;
+  for (std::size_t k = 0; k < strikers->size(); ++k) {
+    json& striker = (*strikers)[k];
+    for (const char* key : {"offset", "spin"}) {
+      if (!striker.is_object() || !striker.contains(key)) continue;
+      json& value = striker[key];
+      if (value.is_number()) value = json::array({value});
+      if (!value.is_array())
+        checks.fail("strikers[" + std::to_string(k) + "]." + key + " = " +
+                    kernel::json_excerpt(value) +
+                    " is invalid; allowed: " + (key == std::string("offset") ? "m" : "rad/s") +
+                    ", a number in the plane, [x, y, z] in space");
+    }
+  }
+}
+
+// An offset or spin: finite components.
+void check_finite(const std::vector<double>& value, const std::string& field, const char* what,
+                  const SceneChecks& checks) {
+  for (std::size_t k = 0; k < value.size(); ++k)
+    if (!std::isfinite(value[k]))
+      checks.fail(invalid_value_message(field + "[" + std::to_string(k) + "]", value[k], what));
+}
+
 void check_strikers(const PackingScene& scene, const SceneChecks& checks) {
   if (scene.strikers.empty()) checks.fail("strikers must be an array of at least one striker");
   for (std::size_t k = 0; k < scene.strikers.size(); ++k) {
@@ -106,6 +136,8 @@ void check_strikers(const PackingScene& scene, const SceneChecks& checks) {
       checks.fail(path + ".velocity = " + vector_text(striker.velocity) +
                   " is invalid; allowed: a velocity of speed >= 1e-100 m/s (below, m v^2 "
                   "underflows double precision)");
+    check_finite(striker.offset, path + ".offset", "a finite offset (m)", checks);
+    check_finite(striker.spin, path + ".spin", "a finite angular velocity (rad/s)", checks);
     const bool solid = scene.lattice && lattice_dimension(scene.lattice->type) == 3;
     const std::size_t wanted = scene.lattice ? (solid ? 3 : 2) : 1;
     if (striker.target.size() != wanted)
@@ -135,6 +167,7 @@ PackingScene read_packing_scene(json document, const std::string& source,
                                 const kernel::JsonLocations* locations) {
   const SceneChecks checks(source);
   granular::lend_material(document, {"/lattice", "/beads", "/walls", "/strikers"}, source);
+  numbers_as_vectors(document, checks);
   PackingScene scene;
   kernel::read_fields(
       document, scene,
@@ -166,8 +199,29 @@ void check_dimension(const PackingScene& scene, int dimension) {
                   ".side is back or front in a planar packing; allowed: bottom, top, "
                   "left, right");
   }
-  for (std::size_t k = 0; k < scene.strikers.size(); ++k)
-    check(scene.strikers[k].velocity, "strikers[" + std::to_string(k) + "].velocity");
+  const std::string turning =
+      dimension == 2 ? "a planar packing: a number" : "a three-dimensional packing: [x, y, z]";
+  auto check_turning = [&](const std::vector<double>& value, const std::string& field) {
+    const std::size_t wanted = dimension == 2 ? 1 : 3;
+    if (!value.empty() && value.size() != wanted)
+      checks.fail(field + " = " + vector_text(value) + " has " + std::to_string(value.size()) +
+                  " components; allowed: " + std::to_string(wanted) + " in " + turning);
+  };
+  for (std::size_t k = 0; k < scene.strikers.size(); ++k) {
+    const StrikerSpec& striker = scene.strikers[k];
+    const std::string path = "strikers[" + std::to_string(k) + "]";
+    check(striker.velocity, path + ".velocity");
+    check_turning(striker.offset, path + ".offset");
+    check_turning(striker.spin, path + ".spin");
+    if (dimension == 3 && !striker.offset.empty()) {
+      // the offset lies across the path: its share along the velocity is round-off
+      const Eigen::Vector3d offset(striker.offset.data()), velocity(striker.velocity.data());
+      if (std::abs(offset.dot(velocity)) > 1e-9 * offset.norm() * velocity.norm())
+        checks.fail(path + ".offset = " + vector_text(striker.offset) +
+                    " is not perpendicular to its velocity " + vector_text(striker.velocity) +
+                    "; allowed: an offset across the striker's path (offset . velocity = 0)");
+    }
+  }
 }
 
 PackingScene parse_packing_scene(std::string_view text, const std::string& source,

@@ -23,7 +23,9 @@ namespace {
 // What run_packing() returns: the vectors of summary.json as arrays, the series and frames.
 // Per body a row of `dimension` components.
 struct PackingResult : SceneResult {
-  Eigen::MatrixXd post_impact_velocities;   // m/s, per body (beads, then strikers)
+  Eigen::MatrixXd post_impact_velocities;  // m/s, per body (beads, then strikers)
+  // rad/s, per body: a column (about z) in the plane, three in space; zeros when nothing turns
+  Eigen::MatrixXd post_impact_angular_velocities;
   Eigen::MatrixXd body_impulses;            // N s, per body
   Eigen::MatrixXd positions;                // m, the centres, per body
   Eigen::VectorXd radii;                    // m, per body
@@ -91,6 +93,10 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
   PackingResult result;
   result.fill(run, summary);
   result.post_impact_velocities = per_body(impact.velocity_after, model.dimension);
+  const int turning = model.dimension == 3 ? 3 : 1;
+  result.post_impact_angular_velocities = impact.angular_velocity_after.size() > 0
+                                              ? per_body(impact.angular_velocity_after, turning)
+                                              : Eigen::MatrixXd::Zero(model.body_count(), turning);
   result.body_impulses =
       per_body((impact.velocity_after - model.velocity).cwiseProduct(model.mass), model.dimension);
   result.positions = model.position;
@@ -119,6 +125,10 @@ void bind_packings(py::module_& module) {
       .def_readonly("post_impact_velocities", &PackingResult::post_impact_velocities,
                     "m/s, bodies x dimension: the packing's beads (a lattice row by row), then "
                     "strikers")
+      .def_readonly("post_impact_angular_velocities",
+                    &PackingResult::post_impact_angular_velocities,
+                    "rad/s, bodies x 1 (about z) in the plane, bodies x 3 in space, the bodies "
+                    "in the same order; zeros when no contact rubs and no body spins")
       .def_readonly("body_impulses", &PackingResult::body_impulses, "N s, bodies x dimension")
       .def_readonly("positions", &PackingResult::positions, "m, the centres, bodies x dimension")
       .def_readonly("radii", &PackingResult::radii, "m, per body")

@@ -100,3 +100,34 @@ def test_three_dimensional_packings_and_their_bad_input(tmp_path):
               "strikers": [{"target": [0], "radius": 0.005, "velocity": [1, 0, 0]}]}
     with pytest.raises(ValueError, match=r"lines 2 and 3: bead 0 and bead 1 overlap by 0\.001"):
         mimpact.run_packing(listed, data_dir=tmp_path)
+
+
+def test_a_spinning_striker_on_a_rough_packing():
+    """Issue 46: a striker that comes off-centre and spinning on a rough hexagonal packing; the
+    angular velocities as summary.json has them, momentum and angular momentum about the origin
+    kept to round-off, the kinetic energy lost to the normal and slip work."""
+    scene = {"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+             "lattice": {"type": "hexagonal", "rows": 4, "columns": 4, "radius": 0.005},
+             "strikers": [{"target": [0, 1], "radius": 0.005, "velocity": [0, 1],
+                           "offset": 0.003, "spin": -150}],
+             "contact": {"restitution": 0.9, "friction": 0.3},
+             "impact": {"integrator": "adaptive", "tolerance": 1e-10},
+             "configuration_check": {"enabled": False}}
+    result = mimpact.run_packing(scene)
+    summary = result.summary
+    spins = result.post_impact_angular_velocities
+    assert spins.shape == (17, 1)
+    np.testing.assert_array_equal(spins[:, 0], summary["post_impact_angular_velocities"])
+    assert np.count_nonzero(spins[:16]) > 4  # the packing's beads were set turning
+    moment = summary["angular_momentum"]
+    scale = 1e-2 * np.linalg.norm(summary["momentum"]["before"])  # m V (2 R)
+    np.testing.assert_allclose(moment["after"], moment["before"], rtol=0, atol=1e-12 * scale)
+    np.testing.assert_allclose(summary["momentum"]["after"], summary["momentum"]["before"],
+                               rtol=0, atol=1e-12 * np.linalg.norm(summary["momentum"]["before"]))
+    energy = summary["energy"]
+    before = energy["kinetic_before"] + energy["rotational_before"]
+    after = energy["kinetic_after"] + energy["rotational_after"]
+    assert energy["slip_total"] > 0
+    assert before - after == pytest.approx(energy["dissipated_total"], rel=1e-10)
+    rubbing = [c for c in summary["contacts"] if "tangential_impulse" in c]
+    assert len(rubbing) == len(summary["contacts"])

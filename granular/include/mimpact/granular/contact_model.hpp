@@ -4,10 +4,12 @@
 #include <Eigen/SparseCore>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mimpact/granular/bead_geometry.hpp"
+#include "mimpact/granular/rotation.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 
 namespace mimpact::granular {
@@ -33,6 +35,9 @@ struct ContactModel {
   // the bodies as spheres, for the compliant contacts in the moving geometry (a packing); none
   // for a chain, whose gaps are exactly linear
   std::shared_ptr<const BeadGeometry> beads;
+  // the bodies turn (a contact rubs or a body spins): then the kernel's body b has `dimension`
+  // translations and rotation->components angular coordinates, in this order
+  std::optional<Rotation> rotation;
 
   Eigen::Index body_count() const { return mass.size() / dimension; }
   Eigen::Index contact_count() const { return Eigen::Index(laws.size()); }
@@ -40,6 +45,12 @@ struct ContactModel {
 
 // Kinetic energy (J) of the bodies moving with `velocity` (per coordinate).
 double kinetic_energy(const ContactModel& model, const Eigen::VectorXd& velocity);
+
+// The kernel's generalized velocity of the model's bodies (body by body: translations, then
+// with rotation the angular velocity) as `velocity` (per translation coordinate) and
+// `angular_velocity` (components per body; empty without rotation).
+void split_velocities(const ContactModel& model, const Eigen::VectorXd& generalized,
+                      Eigen::VectorXd& velocity, Eigen::VectorXd& angular_velocity);
 
 // The largest compression (m) of contact j alone, struck at its approach speed u_j-:
 // ((1 + eta) m u^2 / (2 K))^(1 / (1 + eta)), m = 1 / H_jj.

@@ -9,15 +9,18 @@
 namespace mimpact::granular {
 
 // Where the kinetic energy of a scene's impacts went (J):
-//   kinetic_before + potential_before + work_of_forces
-//     = kinetic_after + dissipated_total + potential_left,
+//   kinetic_before + rotational_before + potential_before + work_of_forces
+//     = kinetic_after + rotational_after + dissipated_total + potential_left,
 // to round-off for every method: each accounts the contacts' work by the trapezoidal rule over
-// its own steps, which the velocities follow exactly (docs/model.md, section 12).
+// its own steps, which the velocities follow exactly (docs/model.md, sections 12 and 16).
 struct EnergyLedger {
-  double kinetic_before = 0.0, kinetic_after = 0.0;
+  double kinetic_before = 0.0, kinetic_after = 0.0;        // of the translations
+  double rotational_before = 0.0, rotational_after = 0.0;  // of the rotations
+  Eigen::VectorXd slip;           // per contact: the work its friction took (empty: no friction)
   double potential_before = 0.0;  // held by the contacts at the start (a precompression)
   double work_of_forces = 0.0;    // done by the bodies' own forces (the precompression)
-  Eigen::VectorXd dissipated;     // per contact: its work + its potential energy before - after
+  // per contact: its work (normal and slip) + its potential energy before - after
+  Eigen::VectorXd dissipated;
   double dissipated_total = 0.0;
   double potential_left = 0.0;  // held by the contacts at the end (LZB: below its tolerance)
   // the two sides' difference (J), round-off

@@ -18,8 +18,10 @@ struct ImpactOutcome {
   // energy; the steps and duration
   numerics::ImpactResult result;
   Eigen::VectorXd velocity_after;  // per coordinate (m/s), after the last impact
-  double impact_time = 0.0;        // s, when the first impact began
-  double wall_time = 0.0;          // s spent in the impact computations
+  // rad/s, components per body, after the last impact: when the bodies turn (else empty)
+  Eigen::VectorXd angular_velocity_after;
+  double impact_time = 0.0;  // s, when the first impact began
+  double wall_time = 0.0;    // s spent in the impact computations
   // compliant method, free scene: compliant.end_time came with contacts still closed, so the
   // velocities are those at that time, not the final ones (summary status "end_time")
   bool cut_by_end_time = false;

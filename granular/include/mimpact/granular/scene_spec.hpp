@@ -116,6 +116,7 @@ struct ContactSpec {
   double restitution = 1.0;
   // K (N/m^eta) of every contact; when absent, Hertz's, which needs exponent 3/2
   std::optional<double> stiffness;
+  double friction = 0.0;  // Coulomb's mu of every contact (docs/model.md, section 16)
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -125,6 +126,7 @@ struct ContactSpec {
           within(0.0, 10.0, "1 linear, 3/2 Hertz", true).described("0 < eta <= 10"));
     field("restitution", self.restitution, within(0.0, 1.0).described("0 <= e <= 1"));
     field("stiffness", self.stiffness, positive("N/m^exponent"));
+    field("friction", self.friction, at_least(0.0, "Coulomb's mu; 0: frictionless"));
   }
 
   // Hertz's stiffness needs exponent 3/2: another exponent needs its stiffness.
@@ -134,7 +136,8 @@ struct ContactSpec {
     return {.stiffness = stiffness.value_or(hertz),
             .exponent = exponent,
             .restitution = restitution,
-            .model = model};
+            .model = model,
+            .friction = friction};
   }
 };
 

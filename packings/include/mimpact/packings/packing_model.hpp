@@ -28,10 +28,11 @@ struct PackingContact {
   double rest = 0.0;         // m: g = 0 at the configuration the contact closes in
 };
 
-// A packing of frictionless beads: one translation per dimension and bead (no friction, so
-// rotation plays no part), rigid walls, strikers flying at beads of the packing. Bodies are the
-// beads (a lattice row by row), then the strikers; coordinate d b + k is component k of body b
-// (d = dimension: 2 for the planar packings of the scenes). One code path for any dimension.
+// A packing of beads: one translation per dimension and bead, rigid walls, strikers flying at
+// beads of the packing. Bodies are the beads (a lattice row by row), then the strikers;
+// coordinate d b + k is component k of body b (d = dimension: 2 for the planar packings of the
+// scenes). When a contact rubs or a body spins, the beads turn too (ContactModel::rotation).
+// One code path for any dimension.
 struct PackingModel : granular::ContactModel {
   PackingModel() { dimension = 2; }
 
@@ -61,6 +62,13 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const Pac
 
 // Total momentum (N s) of the bodies moving with `velocity` (per coordinate).
 Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity);
+
+// Total angular momentum (N m s) about the origin, sum of m x x v + I omega, of the bodies moving
+// with `velocity` and turning at `angular_velocity` (empty: not turning) where they are at
+// `time` (s), each flown from its start at its velocity before the impact: [Lz] in the plane,
+// [Lx, Ly, Lz] in space.
+Vector angular_momentum(const PackingModel& model, const Eigen::VectorXd& velocity,
+                        const Eigen::VectorXd& angular_velocity, double time);
 
 // The body of bead (row, column) of a planar lattice, (layer, row, column) of a three-dimensional
 // one, or bead `index` of a bead list.

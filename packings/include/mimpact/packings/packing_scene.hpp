@@ -65,7 +65,9 @@ struct LatticeSpec {
 };
 
 // Beads listed in a CSV file: a header "x,y,radius" (m, a planar packing) or "x,y,z,radius"
-// (three dimensions), then one bead per line, numbered in the file's order.
+// (three dimensions), optionally followed by the velocity "vx,vy" (m/s; "vx,vy,vz" in space)
+// and then the angular velocity "wz" (rad/s; "wx,wy,wz" in space), then one bead per line,
+// numbered in the file's order.
 struct BeadListSpec {
   std::string file;  // relative to the scene file's directory
   granular::Material material;
@@ -113,6 +115,12 @@ struct StrikerSpec {
   double radius = 0.0;           // m
   std::vector<double> velocity;  // m/s, one component per dimension
   double gap = 0.0;              // m between the striker and its target, >= 0
+  // m: its path's distance from the target's centre, [o] in the plane (positive to the left of
+  // its flight), [ox, oy, oz] perpendicular to its velocity in space; a number is read as [o]
+  std::vector<double> offset;
+  // rad/s: its angular velocity, [w] about z in the plane, [wx, wy, wz] in space; a number is
+  // read as [w]
+  std::vector<double> spin;
   granular::Material material;
 
   template <class Self, class Visit>
@@ -122,6 +130,8 @@ struct StrikerSpec {
     field("radius", self.radius, positive("m").needed());
     field("velocity", self.velocity, any("m/s, [vx, vy] or [vx, vy, vz]").needed());
     field("gap", self.gap, at_least(0.0, "m"));
+    field("offset", self.offset, any("m, a number in the plane, [ox, oy, oz] in space"));
+    field("spin", self.spin, any("rad/s, a number in the plane, [wx, wy, wz] in space"));
     field("material", self.material, any().needed());
   }
 };
