@@ -19,7 +19,7 @@ def run_example(name, *arguments):
 
 def test_every_example_is_tested():
     tested = {"bouncing_ball.py", "bead_column.py", "taper_sweep.py", "calibrate_restitution.py",
-              "coste_speed_law.py"}
+              "coste_speed_law.py", "billiard_break.py"}
     assert {path.name for path in EXAMPLES.glob("*.py")} <= tested
 
 
@@ -50,3 +50,19 @@ def test_coste_speed_law_fits_the_measured_pairs(tmp_path):
     assert nominal_rms < 0.02 * 800 and fitted_rms < 0.001 * 800
     assert abs(young / 2.26e11 - 1) < 0.06
     assert (tmp_path / "coste_speed_law.png").stat().st_size > 10_000
+
+
+def test_billiard_break_turns_the_balls_and_keeps_momentum(tmp_path):
+    """Issue 46: friction between the balls sets the object balls turning and takes energy;
+    momentum and angular momentum are kept to round-off, with and without it."""
+    lines = run_example("billiard_break.py", "--out", str(tmp_path)).splitlines()
+    frictionless, rough = lines[0], lines[2]
+    for line in (frictionless, rough):
+        assert float(line.split("momentum change")[1].split()[0]) < 1e-15
+        assert float(line.split("angular momentum change")[1].split()[0]) < 1e-15
+    assert float(frictionless.split("slip took")[1].split()[0]) == 0.0
+    assert float(rough.split("slip took")[1].split()[0]) > 0.1  # J, of 5.7
+    assert "spins from 0.00 to 0.00" in lines[1]
+    low, high = (float(x) for x in lines[3].split("spins from")[1].split("rad/s")[0].split("to"))
+    assert low < -10 and high > 5
+    assert (tmp_path / "billiard_break.png").stat().st_size > 10_000
