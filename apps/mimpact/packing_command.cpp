@@ -30,6 +30,9 @@ std::map<std::string, std::string> output_files(const nlohmann::ordered_json& su
     files["frame_velocities.csv"] = packings::frame_velocities_csv(run.frames, model.dimension);
     if (!run.frames.position.empty())
       files["frame_positions.csv"] = packings::frame_positions_csv(run.frames, model.dimension);
+    if (!run.frames.angular_velocity.empty())
+      files["frame_angular_velocities.csv"] =
+          packings::frame_angular_velocities_csv(run.frames, model.dimension);
   }
   return files;
 }

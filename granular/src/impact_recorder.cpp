@@ -92,11 +92,16 @@ ImpactRecorder::ImpactRecorder(const ContactModel& model, RecordSpec record, int
   std::sort(needed.begin(), needed.end());
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
   sampled_ = needed;
+  if (model_.rotation)
+    for (Eigen::Index c : sampled_)
+      for (Eigen::Index r = model_.rotation->tangential.first_row[std::size_t(c)];
+           r < model_.rotation->tangential.first_row[std::size_t(c) + 1]; ++r)
+        sampled_rows_.push_back(r);
   const double columns = double(record_.contacts.size() + recorded_coordinates_.size() + 1);
   const double all = double(model_.contact_count() + model_.mass.size());
-  budget_ =
-      RecordingBudget(kSampleOverhead + 8.0 * double(sampled_.size()) + kBytesPerColumn * columns,
-                      kBytesPerColumn * all, limits, "");
+  budget_ = RecordingBudget(kSampleOverhead + 8.0 * double(sampled_.size() + sampled_rows_.size()) +
+                                kBytesPerColumn * columns,
+                            kBytesPerColumn * all, limits, "");
 }
 
 void ImpactRecorder::configure(plugins::LzbImpactOptions& options) {
@@ -134,7 +139,33 @@ void ImpactRecorder::observe(const numerics::ImpactSample& sample) {
     for (Eigen::Index contact : sampled_) kept.force.push_back(value_of(sample.force, contact));
   else
     for (int contact : record_.contacts) kept.force.push_back(value_of(sample.force, contact));
+  if (!sampled_rows_.empty()) keep_tangential(sample, kept);
   samples_.push_back(std::move(kept));
+}
+
+void ImpactRecorder::keep_tangential(const numerics::ImpactSample& sample, Sample& kept) const {
+  const numerics::TangentialRows& rows = model_.rotation->tangential;
+  kept.tangential.assign(sampled_rows_.size(), 0.0);
+  if (sample.tangential_impulse.empty()) return;  // a frictionless impact of this run
+  // the sample's rows follow its contacts; sampled_rows_ follows sampled_, both increasing
+  std::size_t from = 0, kept_row = 0, k = 0;
+  for (Eigen::Index contact : sample.contacts) {
+    const int count = rows.rows_of(contact);
+    while (k < sampled_.size() && sampled_[k] < contact)
+      kept_row += std::size_t(rows.rows_of(sampled_[k++]));
+    if (k < sampled_.size() && sampled_[k] == contact)
+      for (int r = 0; r < count; ++r)
+        kept.tangential[kept_row + std::size_t(r)] =
+            sample.tangential_impulse[from + std::size_t(r)];
+    from += std::size_t(count);
+  }
+}
+
+Eigen::VectorXd ImpactRecorder::tangential_impulse(const Sample& sample) const {
+  Eigen::VectorXd impulse = Eigen::VectorXd::Zero(model_.rotation->tangential.rows());
+  for (std::size_t i = 0; i < sampled_rows_.size(); ++i)
+    impulse(sampled_rows_[i]) = sample.tangential[i];
+  return impulse;
 }
 
 std::vector<double> ImpactRecorder::velocities(const ImpactOutcome& impact, const Sample& sample,
@@ -144,6 +175,9 @@ std::vector<double> ImpactRecorder::velocities(const ImpactOutcome& impact, cons
     double v = impact.velocities_before[sample.impact](coordinate);
     for (std::size_t k = 0; k < sampled_.size(); ++k)
       v += model_.W.coeff(coordinate, sampled_[k]) * sample.impulse[k] / model_.mass(coordinate);
+    for (std::size_t i = 0; i < sampled_rows_.size(); ++i)  // with friction: + M^-1 W_t P_t
+      v += model_.rotation->W_t.coeff(coordinate, sampled_rows_[i]) * sample.tangential[i] /
+           model_.mass(coordinate);
     velocity.push_back(v);
   }
   return velocity;
@@ -179,8 +213,18 @@ Frames ImpactRecorder::frames(const ImpactOutcome& impact) const {
     // v = v- + M^-1 W P, all coordinates at once
     Eigen::Map<const Eigen::VectorXd> impulse(sample.impulse.data(),
                                               Eigen::Index(sample.impulse.size()));
-    const Eigen::VectorXd v =
+    Eigen::VectorXd v =
         impact.velocities_before[sample.impact] + (model_.W * impulse).cwiseQuotient(model_.mass);
+    if (model_.rotation) {  // + M^-1 W_t P_t, and omega = omega- + I^-1 R_t P_t
+      const Rotation& rotation = *model_.rotation;
+      const Eigen::VectorXd tangential = tangential_impulse(sample);
+      v += (rotation.W_t * tangential).cwiseQuotient(model_.mass);
+      Eigen::VectorXd omega = rotation.R_t * tangential;
+      for (Eigen::Index b = 0; b < rotation.body_count(); ++b)
+        omega.segment(rotation.components * b, rotation.components) /= rotation.inertia(b);
+      omega += impact.angular_velocities_before[sample.impact];
+      frames.angular_velocity.emplace_back(omega.data(), omega.data() + omega.size());
+    }
     frames.velocity.emplace_back(v.data(), v.data() + v.size());
   }
   return frames;

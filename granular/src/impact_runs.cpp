@@ -81,6 +81,7 @@ class Impacts : public kernel::SimulationObserver {
     Eigen::VectorXd before, angular_before;
     split_velocities(model_, report.generalized_velocity_before, before, angular_before);
     result_.velocities_before.push_back(std::move(before));
+    if (model_.rotation) result_.angular_velocities_before.push_back(std::move(angular_before));
     generalized_after_ = report.generalized_velocity_after;
   }
 
@@ -173,6 +174,7 @@ ImpactOutcome simulate_impact_numerics(const ContactModel& model,
   }
   impact.impact_times = {0.0};
   impact.velocities_before = {model.velocity};
+  if (model.rotation) impact.angular_velocities_before = {model.rotation->angular_velocity};
   return impact;
 }
 

@@ -3,7 +3,6 @@
 #include <utility>
 #include <vector>
 
-#include "mimpact/common/error.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::granular {
@@ -39,13 +38,6 @@ SceneRun run_lzb(const ContactModel& model,
   }
   ImpactRecorder recorder(model, spec.record, spec.frame_every, options.limits);
   Observers observers;
-  if (record && model.rotation && model.rotation->tangential.rows() > 0 &&
-      (!spec.record.bodies.empty() || spec.frame_every > 0))
-    throw InvalidInput(
-        "record.beads or record.frames with contact.friction > 0: an LZB impact's samples carry "
-        "its normal impulses only, not the tangential ones the bodies' velocities need; "
-        "allowed: record.contacts (their forces), or the post-impact velocities in "
-        "summary.json");
   if (record) {
     recorder.configure(impact);
     observers.add(&recorder);

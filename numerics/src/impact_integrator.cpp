@@ -80,7 +80,8 @@ ImpactResult ImpactIntegrator::integrate_checked(const Given& given, ImpactObser
     tangent_to_normal.makeCompressed();
   }
   laws_.assign(given.laws);
-  sampler_.reset(sampled_contacts_, given.laws.size());
+  sampler_.reset(sampled_contacts_, given.laws.size(),
+                 laws_.frictional() ? given.tangential : nullptr);
   ImpactResult result;
   run({.H = given.H,
        .diagonal = diagonal,

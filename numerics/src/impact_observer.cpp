@@ -2,7 +2,8 @@
 
 namespace mimpact::numerics {
 
-void ImpactSampler::reset(std::span<const Eigen::Index> contacts, std::size_t contact_count) {
+void ImpactSampler::reset(std::span<const Eigen::Index> contacts, std::size_t contact_count,
+                          const TangentialRows* rows) {
   contacts_.assign(contacts.begin(), contacts.end());
   if (contacts_.empty())
     for (std::size_t j = 0; j < contact_count; ++j) contacts_.push_back(Eigen::Index(j));
@@ -10,6 +11,13 @@ void ImpactSampler::reset(std::span<const Eigen::Index> contacts, std::size_t co
   energy_.assign(contacts_.size(), 0.0);
   force_.assign(contacts_.size(), 0.0);
   impulse_.assign(contacts_.size(), 0.0);
+  tangential_rows_.clear();
+  if (rows)
+    for (Eigen::Index j : contacts_)
+      for (Eigen::Index r = rows->first_row[std::size_t(j)];
+           r < rows->first_row[std::size_t(j) + 1]; ++r)
+        tangential_rows_.push_back(r);
+  tangential_.assign(tangential_rows_.size(), 0.0);
 }
 
 void ImpactSampler::send(ImpactObserver& observer, std::int64_t step, double time,
@@ -23,6 +31,7 @@ void ImpactSampler::send(ImpactObserver& observer, std::int64_t step, double tim
   sample.energy = energy_;
   sample.force = force_;
   sample.impulse = impulse_;
+  sample.tangential_impulse = tangential_;
   observer.observe(sample);
 }
 
@@ -35,6 +44,8 @@ void ImpactHistory::observe(const ImpactSample& sample) {
   energy.emplace_back(sample.energy.begin(), sample.energy.end());
   force.emplace_back(sample.force.begin(), sample.force.end());
   impulse.emplace_back(sample.impulse.begin(), sample.impulse.end());
+  tangential_impulse.emplace_back(sample.tangential_impulse.begin(),
+                                  sample.tangential_impulse.end());
 }
 
 }  // namespace mimpact::numerics

@@ -327,6 +327,13 @@ void Friction::end_segment(const State& y) {
     impulse_[std::size_t(slots_[q].row)] += y[base_ + q] * scale(q);
 }
 
+double Friction::tangential_impulse(Eigen::Index row, const State* y) const {
+  const int q = slot_of_row_[std::size_t(row)];
+  double impulse = impulse_[std::size_t(row)];
+  if (y && q >= 0) impulse += (*y)[base_ + std::size_t(q)] * scale(std::size_t(q));
+  return impulse;
+}
+
 void Friction::finish(ImpactResult& result) const {
   result.tangential_impulse =
       Eigen::Map<const Eigen::VectorXd>(impulse_.data(), Index(impulse_.size()));

@@ -65,6 +65,8 @@ class Friction {
   void account_work(const State& y);
   // the segment's P_t increments into the contacts' totals
   void end_segment(const State& y);
+  // row r's P_t (N s): its total at the segment's start, plus its increment at y (none: null)
+  double tangential_impulse(Eigen::Index row, const State* y) const;
   void finish(ImpactResult& result) const;
 
  private:

@@ -223,21 +223,23 @@ void adaptive_lzb::Impact::notify(double t, const State* y, ImpactObserver& obse
     for (std::size_t a = 0; a < shared_.segment.active; ++a)
       impulse_sum +=
           (*y)[shared_.segment.active + a] * shared_.law.impulse_scale[shared_.segment.members[a]];
-  sampler_->observe(
-      observer, steps_, t, impulse_sum,
-      [&](Index j, double& u, double& energy_now, double& force_now, double& impulse) {
-        const int p = y ? shared_.contact.member_of[j] : -1;
-        const bool active = p >= 0 && std::size_t(p) < shared_.segment.active;
-        const double delta =
-            active ? shared_.delta_of(std::size_t(p), *y) : shared_.contact.delta[j];
-        u = p >= 0 ? shared_.segment.velocity_at[std::size_t(p)] : shared_.contact.velocity[j];
-        energy_now = shared_.law.energy(j, delta);
-        force_now = shared_.law.force(j, delta);
-        impulse =
-            shared_.contact.impulse[j] +
-            (active ? (*y)[shared_.segment.active + std::size_t(p)] * shared_.law.impulse_scale[j]
-                    : 0.0);
-      });
+  const auto value_of = [&](Index j, double& u, double& energy_now, double& force_now,
+                            double& impulse) {
+    const int p = y ? shared_.contact.member_of[j] : -1;
+    const bool active = p >= 0 && std::size_t(p) < shared_.segment.active;
+    const double delta = active ? shared_.delta_of(std::size_t(p), *y) : shared_.contact.delta[j];
+    u = p >= 0 ? shared_.segment.velocity_at[std::size_t(p)] : shared_.contact.velocity[j];
+    energy_now = shared_.law.energy(j, delta);
+    force_now = shared_.law.force(j, delta);
+    impulse = shared_.contact.impulse[j] +
+              (active ? (*y)[shared_.segment.active + std::size_t(p)] * shared_.law.impulse_scale[j]
+                      : 0.0);
+  };
+  if (friction_.on())
+    sampler_->observe(observer, steps_, t, impulse_sum, value_of,
+                      [&](Index row) { return friction_.tangential_impulse(row, y); });
+  else
+    sampler_->observe(observer, steps_, t, impulse_sum, value_of);
 }
 
 // The samples of the observer that fall in the part of the current step up to t.

@@ -65,13 +65,17 @@ void LzbImpulseIntegrator::prepare(const Eigen::VectorXd& diagonal, const Eigen:
 
 void LzbImpulseIntegrator::notify(ImpactObserver* observer, std::int64_t step, double time,
                                   double principal) {
-  sampler().observe(*observer, step, time, principal,
-                    [this](Index j, double& u, double& energy, double& force, double& impulse) {
-                      u = contacts_.u[j];
-                      energy = contacts_.energy[j];
-                      force = contacts_.force[j];
-                      impulse = contacts_.impulse[j];
-                    });
+  const auto value_of = [this](Index j, double& u, double& energy, double& force, double& impulse) {
+    u = contacts_.u[j];
+    energy = contacts_.energy[j];
+    force = contacts_.force[j];
+    impulse = contacts_.impulse[j];
+  };
+  if (friction_.on())
+    sampler().observe(*observer, step, time, principal, value_of,
+                      [this](Index row) { return friction_.tangential_impulse(row); });
+  else
+    sampler().observe(*observer, step, time, principal, value_of);
 }
 
 namespace {

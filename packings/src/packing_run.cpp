@@ -343,6 +343,16 @@ std::string frame_velocities_csv(const granular::Frames& frames, int dimension) 
   return frame_table(frames, false, dimension).velocities_csv();
 }
 
+std::string frame_angular_velocities_csv(const granular::Frames& frames, int dimension) {
+  const int components = dimension == 3 ? 3 : 1;
+  const std::size_t columns =
+      frames.angular_velocity.empty() ? 0 : frames.angular_velocity.front().size();
+  std::vector<int> bodies(columns / std::size_t(components));
+  std::iota(bodies.begin(), bodies.end(), 0);
+  return granular::vector_csv(frames.time, frames.angular_velocity, bodies, components,
+                              components == 1 ? "wz" : "w");
+}
+
 std::string frame_positions_csv(const granular::Frames& frames, int dimension) {
   const std::size_t columns = frames.position.empty() ? 0 : frames.position.front().size();
   std::vector<int> bodies(columns / std::size_t(dimension));

@@ -2,8 +2,8 @@
 
 - `load(directory)`: the summary, the bodies and contacts, and the frames, as NumPy arrays.
 - `write_paraview(directory)`: two time series of VTK files for ParaView, written with meshio:
-  `beads.pvd` (points with radius, velocity and speed; ParaView draws them as spheres with its
-  Glyph filter, scaled by radius) and `contacts.pvd` (segments between the centres, or from a
+  `beads.pvd` (points with radius, velocity, speed and, when they turn, angular_velocity;
+  ParaView draws them as spheres with its Glyph filter, scaled by radius) and `contacts.pvd` (segments between the centres, or from a
   centre to the wall, carrying the force as cell and point data; Tube scales by it). In two or
   three dimensions; in the moving geometry the beads are where each frame has them
   (frame_positions.csv), else at the configuration of the impact.
@@ -38,7 +38,8 @@ def load(directory):
     m), radius (m), mass (kg), first, second (per contact; second is -1 for a wall), normal
     (contacts x dimension), point (where each contact touches, m), and when the run kept
     frames, time (s), force (frames x contacts, N), velocity (frames x bodies x dimension,
-    m/s) and, in the moving geometry, position (frames x bodies x dimension, m).
+    m/s), when the bodies turn angular_velocity (frames x bodies x 3, rad/s: about z alone in
+    the plane) and, in the moving geometry, position (frames x bodies x dimension, m).
     """
     with open(os.path.join(directory, "summary.json")) as stream:
         summary = json.load(stream)
@@ -63,6 +64,13 @@ def load(directory):
         data["time"] = force[:, 0]
         data["force"] = force[:, 1:]
         data["velocity"] = velocity[:, 1:].reshape(len(velocity), -1, d)
+        turning = os.path.join(directory, "frame_angular_velocities.csv")
+        if os.path.exists(turning):
+            _, omega = _table(turning)
+            omega = omega[:, 1:].reshape(len(omega), len(data["radius"]), -1)
+            if omega.shape[2] == 1:  # about z, in the plane
+                omega = np.concatenate([np.zeros(omega.shape[:2] + (2,)), omega], axis=2)
+            data["angular_velocity"] = omega
         positions = os.path.join(directory, "frame_positions.csv")
         if os.path.exists(positions):
             _, position = _table(positions)
@@ -93,7 +101,8 @@ def write_paraview(directory, out=None):
     out/beads_NNNN.vtu and out/contacts_NNNN.vtu, collected by out/beads.pvd and
     out/contacts.pvd; returns {"beads": path, "contacts": path} of the two collections.
 
-    The beads are vertices carrying `radius`, `velocity` and `speed`; the contacts are segments
+    The beads are vertices carrying `radius`, `velocity` and `speed` (and `angular_velocity`,
+    rad/s, when they turn); the contacts are segments
     (each with its own two points) carrying `force` as cell data and as point data, which
     ParaView's Tube filter scales by. Positions are each frame's in the moving geometry, else
     the configuration of the impact, which the LZB model keeps. Two series, not one multiblock:
@@ -118,11 +127,14 @@ def write_paraview(directory, out=None):
         centre = data["position"][frame] if "position" in data else data["centre"]
         velocity = _space(data["velocity"][frame])
         force = data["force"][frame]
+        beads = {"radius": data["radius"], "velocity": velocity,
+                 "speed": np.linalg.norm(velocity, axis=1)}
+        if "angular_velocity" in data:
+            beads["angular_velocity"] = data["angular_velocity"][frame]
         meshes = {
             "beads": meshio.Mesh(
                 _space(centre), [("vertex", np.arange(bodies).reshape(-1, 1))],
-                point_data={"radius": data["radius"], "velocity": velocity,
-                            "speed": np.linalg.norm(velocity, axis=1)}),
+                point_data=beads),
             "contacts": meshio.Mesh(
                 _space(contact_segments(data, centre).reshape(-1, data["dimension"])),
                 [("line", lines)], point_data={"force": np.repeat(force, 2)},
@@ -140,13 +152,15 @@ def write_paraview(directory, out=None):
     return paths
 
 
-def render(directory, png, frame=None, size=(1200, 900)):
+def render(directory, png, frame=None, size=(1200, 900), spins=False):
     """Draws one frame as docs/packings.md's ParaView recipe shows it, with VTK (Debian's
     python3-vtk9; under xvfb-run where there is no display): the beads as spheres of their
     radius (Glyph, scaled by radius, factor 2), the contacts as tubes whose radius grows with
     their force (Extract Surface, then Tube varying its radius by the scalar force from 0.1 mm
     to 2.5 mm). `frame`: its index, by default the frame whose contacts carry the most force.
-    Writes png and returns its path; write_paraview(directory) first."""
+    `spins`: the beads coloured by their angular velocity about z (blue clockwise, red
+    counter-clockwise, white at rest, full colour from the 90th percentile of |omega| on; the
+    recipe's "Coloring: angular_velocity, Z"), for a run whose beads turn. Writes png and returns its path; write_paraview(directory) first."""
     import vtk
 
     out = os.path.join(directory, "paraview")
@@ -183,10 +197,30 @@ def render(directory, png, frame=None, size=(1200, 900)):
     tube.SetNumberOfSides(12)
     renderer = vtk.vtkRenderer()
     renderer.SetBackground(1.0, 1.0, 1.0)
-    for source, colour, opacity in ((glyph, (0.75, 0.75, 0.78), 0.35), (tube, (0.8, 0.1, 0.1), 1.0)):
+    if spins:
+        glyph.SetColorModeToColorByScalar()
+        glyph.SetInputArrayToProcess(3, 0, 0, 0, "angular_velocity")  # the colouring array
+        glyph.Update()
+        from vtk.util.numpy_support import vtk_to_numpy
+        omega = vtk_to_numpy(beads.GetOutput().GetPointData().GetArray("angular_velocity"))[:, 2]
+        # the range of most beads, so that a striker spinning fast does not wash them out
+        largest = max(float(np.percentile(np.abs(omega), 90)), 1e-300)
+    for source, colour, opacity in ((glyph, (0.75, 0.75, 0.78), 0.35 if not spins else 1.0),
+                                    (tube, (0.8, 0.1, 0.1), 1.0)):
         mapper = vtk.vtkPolyDataMapper()
         mapper.SetInputConnection(source.GetOutputPort())
         mapper.ScalarVisibilityOff()
+        if spins and source is glyph:
+            diverging = vtk.vtkColorTransferFunction()
+            diverging.AddRGBPoint(-largest, 0.23, 0.30, 0.75)
+            diverging.AddRGBPoint(0.0, 0.95, 0.95, 0.95)
+            diverging.AddRGBPoint(largest, 0.71, 0.02, 0.15)
+            mapper.SetLookupTable(diverging)
+            mapper.ScalarVisibilityOn()
+            mapper.SetScalarModeToUsePointFieldData()
+            mapper.SelectColorArray("angular_velocity")
+            mapper.SetArrayComponent(2)
+            mapper.SetColorModeToMapScalars()
         actor = vtk.vtkActor()
         actor.SetMapper(mapper)
         actor.GetProperty().SetColor(*colour)

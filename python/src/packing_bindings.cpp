@@ -56,14 +56,17 @@ py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies, int di
   dict["time"] = Eigen::VectorXd(
       Eigen::Map<const Eigen::VectorXd>(frames.time.data(), Eigen::Index(frames.time.size())));
   dict["forces"] = table(frames.force, frames.force.empty() ? 0 : frames.force.front().size());
-  const auto per_frame = [&](const std::vector<std::vector<double>>& rows) {
+  const auto per_frame = [&](const std::vector<std::vector<double>>& rows, int components) {
     return py::module_::import("numpy")
-        .attr("asarray")(table(rows, std::size_t(dimension * bodies)))
-        .attr("reshape")(Eigen::Index(frames.time.size()), bodies, dimension);
+        .attr("asarray")(table(rows, std::size_t(components * bodies)))
+        .attr("reshape")(Eigen::Index(frames.time.size()), bodies, components);
   };
-  dict["velocities"] = per_frame(frames.velocity);
+  dict["velocities"] = per_frame(frames.velocity, dimension);
+  // when the bodies turn: (frames, bodies, 1) about z in the plane, (frames, bodies, 3) in space
+  if (!frames.angular_velocity.empty())
+    dict["angular_velocities"] = per_frame(frames.angular_velocity, dimension == 3 ? 3 : 1);
   // the moving geometry's: where the bodies are at each frame
-  if (!frames.position.empty()) dict["positions"] = per_frame(frames.position);
+  if (!frames.position.empty()) dict["positions"] = per_frame(frames.position, dimension);
   return dict;
 }
 
@@ -139,7 +142,8 @@ void bind_packings(py::module_& module) {
                     "for the compliant contacts (see the summary's moving_geometry)")
       .def_readonly("frames", &PackingResult::frames,
                     "None, or dict of 'time', 'forces' (frames x contacts), 'velocities' "
-                    "(frames x bodies x dimension)")
+                    "(frames x bodies x dimension), and when the bodies turn "
+                    "'angular_velocities' (frames x bodies x 1 in the plane, 3 in space)")
       .def("__repr__", [](const PackingResult& result) {
         return "<PackingResult " + result.status + ": " +
                std::to_string(result.post_impact_velocities.rows()) + " bodies, " +

@@ -27,3 +27,15 @@ def cli():
     if not path:
         pytest.skip("MIMPACT_CLI not set (run through ctest)")
     return path
+
+
+def rough_packing():
+    """A 4 x 4 hexagonal packing of steel beads with friction 0.3, struck 3 mm off-centre by a
+    striker spinning at -150 rad/s (issue 46), for the adaptive LZB at tolerance 1e-10."""
+    return {"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+            "lattice": {"type": "hexagonal", "rows": 4, "columns": 4, "radius": 0.005},
+            "strikers": [{"target": [0, 1], "radius": 0.005, "velocity": [0, 1],
+                          "offset": 0.003, "spin": -150}],
+            "contact": {"restitution": 0.9, "friction": 0.3},
+            "impact": {"integrator": "adaptive", "tolerance": 1e-10},
+            "configuration_check": {"enabled": False}}

@@ -1,5 +1,6 @@
 """`mimpact packing --out` read back, written for ParaView with meshio, and drawn."""
 
+import json
 import os
 import shutil
 import subprocess
@@ -11,7 +12,7 @@ import meshio
 import numpy as np
 import pytest
 
-from conftest import SOURCE
+from conftest import SOURCE, rough_packing
 from mimpact import packing_output
 
 
@@ -154,3 +155,44 @@ def test_the_paraview_recipe_shows_beads_and_force_chains(cli, tmp_path):
     subprocess.run(["xvfb-run", "-a", pvbatch, str(SOURCE / "python/tests/paraview_recipe.py"),
                     str(out), str(frame), str(tmp_path / "paraview.png")], check=True)
     _shows_beads_and_force_chains(tmp_path / "paraview.png", (0.32, 0.34, 0.43))
+
+
+def test_frames_of_a_rough_packing_carry_the_spins(cli, tmp_path):
+    """Issue 46: with friction the frames carry every bead's angular velocity, in
+    frame_angular_velocities.csv, load() and the ParaView beads; at every frame the bodies
+    keep the angular momentum about the origin summary.json gives (the tangential impulses so
+    far are internal), and the last frame is the post-impact state."""
+    scene = dict(rough_packing(), record={"interval": 2e-6, "frames": 1})
+    path = tmp_path / "rough.json"
+    path.write_text(json.dumps(scene))
+    out = tmp_path / "rough"
+    subprocess.run([cli, "packing", str(path), "--out", str(out), "--quiet"], check=True)
+    data = packing_output.load(out)
+    frames = len(data["time"])
+    omega = data["angular_velocity"]
+    assert frames > 5 and omega.shape == (frames, 17, 3)
+    np.testing.assert_allclose(omega[-1, :, 2], data["summary"]["post_impact_angular_velocities"],
+                               rtol=0, atol=1e-12 * 150)
+    # angular momentum about the origin at the impact's configuration: the striker has flown
+    # no gap, so the bodies are where bodies.csv has them
+    inertia = 0.4 * data["mass"] * data["radius"] ** 2
+    centre, velocity = data["centre"], data["velocity"]
+    cross = centre[None, :, 0] * velocity[:, :, 1] - centre[None, :, 1] * velocity[:, :, 0]
+    moment = np.einsum("b,fb->f", data["mass"], cross) + omega[:, :, 2] @ inertia
+    before = data["summary"]["angular_momentum"]["before"][0]
+    np.testing.assert_allclose(moment, before, rtol=0, atol=1e-12 * abs(before))
+    packing_output.write_paraview(out)
+    beads = meshio.read(out / "paraview" / f"beads_{frames - 1:04d}.vtu")
+    np.testing.assert_array_equal(beads.point_data["angular_velocity"], omega[-1])
+    # drawn with the beads coloured by their spin: both senses show, blue and red
+    if shutil.which("xvfb-run") is None:
+        return
+    png = tmp_path / "spins.png"
+    subprocess.run(["xvfb-run", "-a", sys.executable, "-c",
+                    f"from mimpact import packing_output; packing_output.render("
+                    f"{str(out)!r}, {str(png)!r}, frame=-1, spins=True)"],
+                   check=True, env=dict(os.environ), capture_output=True)
+    pixels = matplotlib.image.imread(png)[:, :, :3]
+    red = (pixels[:, :, 0] > 0.6) & (pixels[:, :, 2] < 0.35)
+    blue = (pixels[:, :, 2] > 0.6) & (pixels[:, :, 0] < 0.4)
+    assert red.sum() > 300 and blue.sum() > 300

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import mimpact
-from conftest import SOURCE, read_scene
+from conftest import SOURCE, read_scene, rough_packing
 
 HEXAGON = "examples/scenes/packings/hexagonal_10x10.json"
 
@@ -106,14 +106,7 @@ def test_a_spinning_striker_on_a_rough_packing():
     """Issue 46: a striker that comes off-centre and spinning on a rough hexagonal packing; the
     angular velocities as summary.json has them, momentum and angular momentum about the origin
     kept to round-off, the kinetic energy lost to the normal and slip work."""
-    scene = {"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
-             "lattice": {"type": "hexagonal", "rows": 4, "columns": 4, "radius": 0.005},
-             "strikers": [{"target": [0, 1], "radius": 0.005, "velocity": [0, 1],
-                           "offset": 0.003, "spin": -150}],
-             "contact": {"restitution": 0.9, "friction": 0.3},
-             "impact": {"integrator": "adaptive", "tolerance": 1e-10},
-             "configuration_check": {"enabled": False}}
-    result = mimpact.run_packing(scene)
+    result = mimpact.run_packing(rough_packing())
     summary = result.summary
     spins = result.post_impact_angular_velocities
     assert spins.shape == (17, 1)

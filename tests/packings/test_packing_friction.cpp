@@ -261,11 +261,6 @@ TEST(PackingFriction, BadOffsetsSpinsAndUnsupportedCombinationsAreRefused) {
   EXPECT_NE(refusal(R"("velocity": [1, 0])", rough + R"(, "method": "compliant")", planar)
                 .find("contact.friction = 0.3 is invalid; allowed: 0 with the compliant method"),
             std::string::npos);
-  EXPECT_NE(
-      refusal(R"("velocity": [1, 0])",
-              rough + R"(, "record": {"beads": [0]}, "impact": {"integrator": "adaptive"})", planar)
-          .find("record.beads or record.frames with contact.friction > 0"),
-      std::string::npos);
   EXPECT_NE(refusal(R"("velocity": [1, 0])", R"(, "contact": {"friction": -0.1})", planar)
                 .find("contact.friction = -0.1 is invalid"),
             std::string::npos);
@@ -274,6 +269,54 @@ TEST(PackingFriction, BadOffsetsSpinsAndUnsupportedCombinationsAreRefused) {
               rough + R"(, "impact": {"integrator": "asynchronous", "delta_p": 1e-6})", planar)
           .find("friction"),
       std::string::npos);
+}
+
+// The frames of a frictional impact take its tangential impulses: at every frame the bodies keep
+// their momentum and angular momentum (the impulses so far are internal), and the last frame is
+// the run's post-impact state, as the integrators assembled it.
+TEST(PackingFriction, FramesCarryTheTangentialImpulsesAndTheSpins) {
+  for (const char* impact :
+       {R"({"integrator": "adaptive", "tolerance": 1e-10})", R"({"delta_p": 2e-6})"}) {
+    const PackingCase run = run_packing("{" + kSteel + R"(, "lattice": {"type": "hexagonal",
+        "rows": 4, "columns": 4, "radius": 0.005}, "strikers": [{"target": [0, 1],
+        "radius": 0.005, "velocity": [0, 1], "offset": 0.003, "spin": -150}],
+        "contact": {"restitution": 0.9, "friction": 0.3}, "configuration_check": {"enabled": false},
+        "record": {"beads": [1, 16], "interval": 2e-6, "every": 50, "frames": 1}, "impact": )" +
+                                        std::string(impact) + "}");
+    const packings::PackingModel& model = run.model;
+    const granular::Frames& frames = run.run.frames;
+    ASSERT_GT(frames.time.size(), 5u);
+    ASSERT_EQ(frames.angular_velocity.size(), frames.time.size());
+    const double t = run.run.impact.impact_time;
+    const packings::Vector p0 = packings::momentum(model, model.velocity);
+    const packings::Vector L0 =
+        packings::angular_momentum(model, model.velocity, model.rotation->angular_velocity, t);
+    double drift = 0.0;
+    for (std::size_t f = 0; f < frames.time.size(); ++f) {
+      const Eigen::Map<const Eigen::VectorXd> v(frames.velocity[f].data(),
+                                                Eigen::Index(frames.velocity[f].size()));
+      const Eigen::Map<const Eigen::VectorXd> w(frames.angular_velocity[f].data(),
+                                                Eigen::Index(frames.angular_velocity[f].size()));
+      drift = std::max(
+          {drift, (packings::momentum(model, v) - p0).norm() / p0.norm(),
+           (packings::angular_momentum(model, v, w, t) - L0).norm() / (p0.norm() * 0.005)});
+    }
+    const Eigen::Map<const Eigen::VectorXd> last_v(frames.velocity.back().data(),
+                                                   Eigen::Index(frames.velocity.back().size()));
+    const Eigen::Map<const Eigen::VectorXd> last_w(
+        frames.angular_velocity.back().data(), Eigen::Index(frames.angular_velocity.back().size()));
+    const double end =
+        std::max((last_v - run.run.impact.velocity_after).cwiseAbs().maxCoeff(),
+                 0.005 * (last_w - run.run.impact.angular_velocity_after).cwiseAbs().maxCoeff());
+    const std::vector<double>& series = run.run.series.velocity.back();  // beads 1 and 16
+    const double recorded = std::max(std::abs(series[0] - run.run.impact.velocity_after(2)),
+                                     std::abs(series[3] - run.run.impact.velocity_after(33)));
+    std::printf("%s: %zu frames, momenta drift %.2e; last frame %.2e, series %.2e from the end\n",
+                impact, frames.time.size(), drift, end, recorded);
+    EXPECT_LT(drift, 1e-12);
+    EXPECT_LT(end, 1e-12);
+    EXPECT_LT(recorded, 1e-12);
+  }
 }
 
 }  // namespace

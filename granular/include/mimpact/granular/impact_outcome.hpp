@@ -32,6 +32,8 @@ struct ImpactOutcome {
   // per impact, in order: when it began (s) and the coordinates' velocities just before it
   std::vector<double> impact_times;
   std::vector<Eigen::VectorXd> velocities_before;
+  // per impact, when the bodies turn: their angular velocities just before it (rad/s)
+  std::vector<Eigen::VectorXd> angular_velocities_before;
 };
 
 }  // namespace mimpact::granular

@@ -39,11 +39,16 @@ class ImpactRecorder : public numerics::ImpactObserver {
  private:
   struct Sample {
     std::size_t impact;
-    double time;                  // s since that impact began
-    std::vector<double> force;    // recorded contacts, or all of them in a frame
-    std::vector<double> impulse;  // sampled contacts
+    double time;                     // s since that impact began
+    std::vector<double> force;       // recorded contacts, or all of them in a frame
+    std::vector<double> impulse;     // sampled contacts
+    std::vector<double> tangential;  // their tangential rows (sampled_rows_), with friction
     bool frame = false;
   };
+  // the sampled rows' P_t of `sample` into kept.tangential
+  void keep_tangential(const numerics::ImpactSample& sample, Sample& kept) const;
+  // every row's P_t at a sample (zero outside the sampled rows)
+  Eigen::VectorXd tangential_impulse(const Sample& sample) const;
   // the velocities of `coordinates` at a sample: v- + M^-1 W P over the sampled contacts
   std::vector<double> velocities(const ImpactOutcome& impact, const Sample& sample,
                                  const std::vector<Eigen::Index>& coordinates) const;
@@ -52,6 +57,7 @@ class ImpactRecorder : public numerics::ImpactObserver {
   RecordSpec record_;
   int frame_every_;
   std::vector<Eigen::Index> sampled_;
+  std::vector<Eigen::Index> sampled_rows_;  // the sampled contacts' tangential rows, in order
   std::vector<Eigen::Index> recorded_coordinates_;
   std::vector<Sample> samples_;
   std::size_t impacts_seen_ = 0;

@@ -27,6 +27,8 @@ struct Frames {
   std::vector<double> time;                   // s since the first impact
   std::vector<std::vector<double>> force;     // [frame][contact] (N)
   std::vector<std::vector<double>> velocity;  // [frame][coordinate] (m/s)
+  // [frame][body * components + k] (rad/s): when the bodies turn (ContactModel::rotation)
+  std::vector<std::vector<double>> angular_velocity;
   // [frame][coordinate] (m): where the bodies are, in the moving geometry; empty in the frozen
   // one, whose configuration is the impact's
   std::vector<std::vector<double>> position;

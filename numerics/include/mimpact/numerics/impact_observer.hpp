@@ -5,6 +5,8 @@
 #include <span>
 #include <vector>
 
+#include "mimpact/numerics/tangential_rows.hpp"
+
 namespace mimpact::numerics {
 
 // The state of an impact at one impulse step, for the contacts being sampled. The spans
@@ -20,6 +22,9 @@ struct ImpactSample {
   std::span<const double> energy;          // potential energy E (J)
   std::span<const double> force;           // contact force F in the last step (N)
   std::span<const double> impulse;         // cumulated impulse P (N s)
+  // with friction: the cumulated tangential impulse P_t (N s) of the sampled contacts' tangential
+  // rows (TangentialRows), contact after contact in the order of `contacts`; else empty
+  std::span<const double> tangential_impulse;
 };
 
 // Called at the first step, every `sample_every` steps and at the end of an impact.
@@ -33,8 +38,10 @@ class ImpactObserver {
 // current sample, in buffers reused from one sample to the next.
 class ImpactSampler {
  public:
-  // Samples `contacts`, or all `contact_count` contacts when it is empty.
-  void reset(std::span<const Eigen::Index> contacts, std::size_t contact_count);
+  // Samples `contacts`, or all `contact_count` contacts when it is empty, and with `rows` their
+  // tangential rows too.
+  void reset(std::span<const Eigen::Index> contacts, std::size_t contact_count,
+             const TangentialRows* rows = nullptr);
   // Calls value_of(j, velocity, energy, force, impulse) to fill each sampled contact j's
   // values, then passes the sample to the observer.
   template <class ValueOf>
@@ -44,12 +51,22 @@ class ImpactSampler {
       value_of(contacts_[k], velocity_[k], energy_[k], force_[k], impulse_[k]);
     send(observer, step, time, principal_impulse);
   }
+  // The same, with each sampled tangential row r's P_t from tangential_of(r).
+  template <class ValueOf, class TangentialOf>
+  void observe(ImpactObserver& observer, std::int64_t step, double time, double principal_impulse,
+               ValueOf&& value_of, TangentialOf&& tangential_of) {
+    for (std::size_t i = 0; i < tangential_rows_.size(); ++i)
+      tangential_[i] = tangential_of(tangential_rows_[i]);
+    observe(observer, step, time, principal_impulse, value_of);
+  }
 
  private:
   void send(ImpactObserver& observer, std::int64_t step, double time, double principal_impulse);
 
   std::vector<Eigen::Index> contacts_;
   std::vector<double> velocity_, energy_, force_, impulse_;
+  std::vector<Eigen::Index> tangential_rows_;  // of the sampled contacts, in their order
+  std::vector<double> tangential_;
 };
 
 // Keeps every sample: one row per sample, one column per sampled contact.
@@ -61,7 +78,7 @@ class ImpactHistory : public ImpactObserver {
   std::vector<std::int64_t> step;
   std::vector<double> time;
   std::vector<double> principal_impulse;
-  std::vector<std::vector<double>> velocity, energy, force, impulse;
+  std::vector<std::vector<double>> velocity, energy, force, impulse, tangential_impulse;
 };
 
 }  // namespace mimpact::numerics

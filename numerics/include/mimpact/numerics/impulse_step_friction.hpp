@@ -28,6 +28,7 @@ class ImpulseStepFriction {
   // contacts whose u it moved are left in pushed() for the caller's joining test.
   void step(std::span<const Eigen::Index> stepping, const double* step_impulse, double* u);
   const std::vector<Eigen::Index>& pushed() const { return pushed_; }
+  double tangential_impulse(Eigen::Index row) const { return impulse_[std::size_t(row)]; }
   void finish(ImpactResult& result) const;
 
  private:

@@ -44,6 +44,9 @@ std::string contacts_csv(const PackingModel& model);
 // one row per frame.
 std::string frame_forces_csv(const granular::Frames& frames);
 std::string frame_velocities_csv(const granular::Frames& frames, int dimension);
+// The frames' angular velocities when the bodies turn: "time,wz_0,wz_1,..." in the plane,
+// "time,wx_0,wy_0,wz_0,..." in space (rad/s).
+std::string frame_angular_velocities_csv(const granular::Frames& frames, int dimension);
 // The frames' positions, "time,x_0,y_0,...", in the moving geometry (frames.position).
 std::string frame_positions_csv(const granular::Frames& frames, int dimension);
 
