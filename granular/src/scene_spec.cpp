@@ -55,6 +55,26 @@ void ContactSpec::check(const SceneChecks& checks) const {
         "missing field contact.stiffness: the Hertz stiffness holds for exponent 1.5 only, and "
         "contact.exponent = " +
         to_text(exponent));
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    if (pairs[k].materials.size() != 2)
+      checks.fail("contact.pairs[" + std::to_string(k) + "].materials has " +
+                  std::to_string(pairs[k].materials.size()) +
+                  " names; allowed: two material names (the same twice for a material with "
+                  "itself)");
+}
+
+void ContactSpec::check_pairs(const std::vector<std::string>& names,
+                              const SceneChecks& checks) const {
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    for (std::size_t i = 0; i < 2; ++i)
+      if (std::find(names.begin(), names.end(), pairs[k].materials[i]) == names.end()) {
+        std::string known;
+        for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
+        checks.fail("contact.pairs[" + std::to_string(k) + "].materials[" + std::to_string(i) +
+                    "] = \"" + pairs[k].materials[i] +
+                    "\" names no material of the scene; allowed: " +
+                    (known.empty() ? "a material's \"name\"" : known));
+      }
 }
 
 fields::Labels impact_labels(const ImpactOverrides& overrides) {

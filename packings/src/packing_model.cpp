@@ -88,9 +88,12 @@ class PackingBuilder {
   }
 
  private:
-  void add_contact(PackingContact contact, double hertz_stiffness) {
+  // the contact of materials a and b: Hertz's stiffness and their pair's friction
+  void add_contact(PackingContact contact, double hertz_stiffness, const granular::Material& a,
+                   const granular::Material& b) {
     model_.contacts.push_back(contact);
     model_.laws.push_back(scene_.contact.law(hertz_stiffness));
+    model_.laws.back().friction = scene_.contact.friction_of(a, b);
   }
 
   // "FILE lines M and N: " where two beads come from a bead list, as its other messages
@@ -115,7 +118,8 @@ class PackingBuilder {
                          " of the sum of their radii); allowed: touching within " +
                          to_text(kTouching) + " of it, or apart");
     add_contact({.first = i, .second = j, .normal = between / distance, .rest = distance},
-                granular::hertz_stiffness(a.radius, a.material, b.radius, b.material));
+                granular::hertz_stiffness(a.radius, a.material, b.radius, b.material), a.material,
+                b.material);
   }
 
   // contacts by their first, then second bead
@@ -165,7 +169,8 @@ class PackingBuilder {
                              " of its radius, or apart");
         add_contact(
             {.first = i, .wall = int(w), .normal = normal, .rest = normal.dot(bead.centre)},
-            granular::hertz_stiffness_wall(bead.radius, bead.material, scene_.walls[w].material));
+            granular::hertz_stiffness_wall(bead.radius, bead.material, scene_.walls[w].material),
+            bead.material, scene_.walls[w].material);
       }
     }
   }
@@ -237,7 +242,8 @@ class PackingBuilder {
                  .second = striker,
                  .normal = normal,
                  .rest = normal.dot(arrival - b.centre)},
-                granular::hertz_stiffness(b.radius, b.material, s.radius, s.material));
+                granular::hertz_stiffness(b.radius, b.material, s.radius, s.material), b.material,
+                s.material);
   }
 
   // where a striker starts: in no wall, on no other striker

@@ -1,5 +1,6 @@
 #include "mimpact/packings/packing_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -73,6 +74,22 @@ void check_packing(const PackingScene& scene, const SceneChecks& checks) {
         "compliant.gaps = \"frozen\" with compliant.geometry = \"moving\"; allowed: frozen "
         "gaps in the frozen geometry only (the moving geometry's gaps are the beads' own)");
   scene.compliant.check_tolerance(scene.compliant.geometry == granular::Geometry::moving, checks);
+}
+
+// the names of the scene's materials, each once
+std::vector<std::string> material_names(const PackingScene& scene) {
+  std::vector<std::string> names;
+  auto add = [&](const granular::Material& material) {
+    if (!material.name.empty() &&
+        std::find(names.begin(), names.end(), material.name) == names.end())
+      names.push_back(material.name);
+  };
+  if (scene.material) add(*scene.material);
+  if (scene.lattice) add(scene.lattice->material);
+  if (scene.beads) add(scene.beads->material);
+  for (const WallSpec& wall : scene.walls) add(wall.material);
+  for (const StrikerSpec& striker : scene.strikers) add(striker.material);
+  return names;
 }
 
 void check_walls(const PackingScene& scene, const SceneChecks& checks) {
@@ -175,6 +192,7 @@ PackingScene read_packing_scene(json document, const std::string& source,
   scene.directory = directory;
   scene.source = source;
   check_packing(scene, checks);
+  scene.contact.check_pairs(material_names(scene), checks);
   check_walls(scene, checks);
   check_strikers(scene, checks);
   scene.impact = granular::resolve_impact(scene.impact, scene.method, {}, source);

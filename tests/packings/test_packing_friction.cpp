@@ -3,6 +3,7 @@
 // against its closed form; a packing's momentum, angular momentum and energy ledger.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -316,6 +317,56 @@ TEST(PackingFriction, FramesCarryTheTangentialImpulsesAndTheSpins) {
     EXPECT_LT(drift, 1e-12);
     EXPECT_LT(end, 1e-12);
     EXPECT_LT(recorded, 1e-12);
+  }
+}
+
+// contact.pairs sets mu per pair of named materials, over contact.friction: a glass bead on a
+// felt floor at mu = 0.8, beside steel on glass at 0.2, meet their closed forms.
+TEST(PackingFriction, FrictionPerPairOfMaterials) {
+  const auto directory = std::filesystem::temp_directory_path() / "mimpact_test_packing_pairs";
+  std::filesystem::create_directories(directory);
+  std::ofstream(directory / "pair.csv")
+      << "x,y,radius,vx,vy,wz\n0,0.005,0.005,0.6,-0.8,0\n0.1,0.05,0.005,0,0,0\n";
+  const std::string glass = R"({"name": "glass", "density": 2500, "young": 6e10, "poisson": 0.2})";
+  const PackingCase run = run_packing(
+      R"({"beads": {"file": "pair.csv", "material": )" + glass +
+          R"(}, "walls": [{"side": "bottom", "material": {"name": "felt", "density": 1000,
+          "young": 1e9, "poisson": 0.3}}], "strikers": [{"target": [1], "radius": 0.005,
+          "velocity": [1, 0], "offset": 0.004, "gap": 0.001, "material": {"name": "steel",
+          "density": 7780, "young": 2.03e11, "poisson": 0.3}}], "contact": {"restitution": 0.8,
+          "friction": 0.05, "pairs": [{"materials": ["felt", "glass"], "friction": 0.8},
+          {"materials": ["glass", "steel"], "friction": 0.2}]}, "impact": {"integrator":
+          "adaptive", "tolerance": 1e-12}, "configuration_check": {"enabled": false}})",
+      directory.string());
+  const packings::PackingModel& model = run.model;
+  Side floor, bead{.mass = model.mass(0), .radius = 0.005};
+  bead.velocity = Vector3d(0.6, -0.8, 0.0);
+  lone_contact(Vector3d::UnitY(), 0.8, 0.8, floor, bead);
+  Side target{.mass = model.mass(2), .radius = 0.005},
+      striker{.mass = model.mass(4), .radius = 0.005};
+  striker.velocity = Vector3d::UnitX();
+  const auto striker_contact = std::find_if(model.contacts.begin(), model.contacts.end(),
+                                            [](const auto& c) { return c.second == 2; });
+  ASSERT_NE(striker_contact, model.contacts.end());
+  lone_contact(padded(striker_contact->normal), 0.2, 0.8, target, striker);
+  const double worst = std::max({difference(after(run, 0), bead), difference(after(run, 1), target),
+                                 difference(after(run, 2), striker)});
+  std::printf("friction per pair: worst difference %.3e of V\n", worst);
+  EXPECT_LT(worst, 1e-10);
+  try {
+    run_packing(R"({"beads": {"file": "pair.csv", "material": )" + glass + R"(}, "strikers": [{
+        "target": [1], "radius": 0.005, "velocity": [1, 0], "material": )" +
+                    glass +
+                    R"(}], "contact": {"pairs": [{"materials": ["glass", "rubber"],
+        "friction": 1}]}})",
+                directory.string());
+    ADD_FAILURE() << "an unknown material name was accepted";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what())
+                  .find("contact.pairs[0].materials[1] = \"rubber\" names no material of the "
+                        "scene; allowed: glass"),
+              std::string::npos)
+        << error.what();
   }
 }
 

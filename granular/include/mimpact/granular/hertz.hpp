@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 #include "mimpact/common/fields.hpp"
 
 namespace mimpact::granular {
@@ -9,9 +11,11 @@ struct Material {
   double density = 0.0;  // kg/m^3
   double young = 0.0;    // Young's modulus E (Pa)
   double poisson = 0.0;  // Poisson's ratio nu
+  std::string name;      // optional: what a scene's contact.pairs call it
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
+    field("name", self.name, any("what contact.pairs call this material"));
     field("density", self.density, positive("kg/m^3").needed());
     field("young", self.young, positive("Pa").needed());
     field("poisson", self.poisson,

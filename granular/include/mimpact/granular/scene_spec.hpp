@@ -13,6 +13,7 @@
 #include "mimpact/common/error.hpp"
 #include "mimpact/common/fields.hpp"
 #include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/hertz.hpp"
 #include "mimpact/kernel/json_document.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 #include "mimpact/plugins/lzb_impact_options.hpp"
@@ -110,13 +111,26 @@ struct CompliantSpec {
   void check_tolerance(bool moving, const SceneChecks& checks) const;
 };
 
+// Coulomb's mu of the contacts between two named materials (Material::name), in either order.
+struct FrictionPair {
+  std::vector<std::string> materials;
+  double friction = 0.0;
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& self, Visit&& field) {
+    field("materials", self.materials, any("two material names").needed());
+    field("friction", self.friction, at_least(0.0, "Coulomb's mu").needed());
+  }
+};
+
 struct ContactSpec {
   numerics::ComplianceModel model = numerics::ComplianceModel::bi_stiffness;
   double exponent = 1.5;
   double restitution = 1.0;
   // K (N/m^eta) of every contact; when absent, Hertz's, which needs exponent 3/2
   std::optional<double> stiffness;
-  double friction = 0.0;  // Coulomb's mu of every contact (docs/model.md, section 16)
+  double friction = 0.0;            // Coulomb's mu of every contact (docs/model.md, section 16)
+  std::vector<FrictionPair> pairs;  // mu per pair of materials, over `friction`
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
@@ -127,10 +141,23 @@ struct ContactSpec {
     field("restitution", self.restitution, within(0.0, 1.0).described("0 <= e <= 1"));
     field("stiffness", self.stiffness, positive("N/m^exponent"));
     field("friction", self.friction, at_least(0.0, "Coulomb's mu; 0: frictionless"));
+    field("pairs", self.pairs);
+  }
+  // mu of a contact of materials a and b: the last pair naming both, else `friction`
+  double friction_of(const Material& a, const Material& b) const {
+    double mu = friction;
+    for (const FrictionPair& pair : pairs)
+      if ((pair.materials[0] == a.name && pair.materials[1] == b.name) ||
+          (pair.materials[0] == b.name && pair.materials[1] == a.name))
+        mu = pair.friction;
+    return mu;
   }
 
-  // Hertz's stiffness needs exponent 3/2: another exponent needs its stiffness.
+  // Hertz's stiffness needs exponent 3/2: another exponent needs its stiffness; a pair names two
+  // materials.
   void check(const SceneChecks& checks) const;
+  // Every pair's names are among `names` (the scene's named materials).
+  void check_pairs(const std::vector<std::string>& names, const SceneChecks& checks) const;
   // The law of a contact whose Hertz stiffness is `hertz` (N/m^1.5): K the scene's, or Hertz's.
   numerics::ContactLaw law(double hertz) const {
     return {.stiffness = stiffness.value_or(hertz),
