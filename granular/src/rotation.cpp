@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "mimpact/numerics/delassus.hpp"
-
 namespace mimpact::granular {
 
 int tangent_frame(const Eigen::Vector3d& n, int dimension, Eigen::Vector3d (&tangents)[2]) {
@@ -83,28 +81,17 @@ Rotation build_rotation(const RotationInput& input) {
     rows.first_row[c + 1] = row;
   }
   gradients.fill(rotation, bodies, row);
-  // one Delassus operator of the columns [W W_t; 0 R_t] over translations and rotations
-  const Eigen::Index n = input.mass.size(), a = rotation.R_t.rows(), m = input.W.cols();
-  Eigen::SparseMatrix<double> columns(n + a, m + row);
-  std::vector<Eigen::Triplet<double>> entries;
-  for (Eigen::Index j = 0; j < m; ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(input.W, j); it; ++it)
-      entries.emplace_back(it.row(), j, it.value());
-  for (Eigen::Index r = 0; r < row; ++r) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(rotation.W_t, r); it; ++it)
-      entries.emplace_back(it.row(), m + r, it.value());
-    for (Eigen::SparseMatrix<double>::InnerIterator it(rotation.R_t, r); it; ++it)
-      entries.emplace_back(n + it.row(), m + r, it.value());
-  }
-  columns.setFromTriplets(entries.begin(), entries.end());
-  Eigen::VectorXd inverse(n + a);
-  inverse.head(n) = input.mass.cwiseInverse();
+  // the blocks the tangent columns add to W^T M^-1 W (the rotations take no normal row)
+  const Eigen::VectorXd inverse_mass = input.mass.cwiseInverse();
+  Eigen::VectorXd inverse_inertia(rotation.R_t.rows());
   for (Eigen::Index b = 0; b < bodies; ++b)
-    inverse.segment(n + rotation.components * b, rotation.components)
+    inverse_inertia.segment(rotation.components * b, rotation.components)
         .setConstant(1.0 / rotation.inertia(b));
-  const Eigen::SparseMatrix<double> full = numerics::assemble_delassus(columns, inverse);
-  rows.normal_to_tangent = full.bottomLeftCorner(row, m);
-  rows.tangent = full.bottomRightCorner(row, row);
+  const Eigen::SparseMatrix<double> mobile = inverse_mass.asDiagonal() * rotation.W_t;
+  rows.normal_to_tangent = Eigen::SparseMatrix<double>(mobile.transpose()) * input.W;
+  rows.tangent = Eigen::SparseMatrix<double>(mobile.transpose()) * rotation.W_t +
+                 Eigen::SparseMatrix<double>(rotation.R_t.transpose()) *
+                     (inverse_inertia.asDiagonal() * rotation.R_t);
   rows.slip_minus =
       rotation.W_t.transpose() * input.velocity + rotation.R_t.transpose() * input.angular_velocity;
   return rotation;
