@@ -291,9 +291,25 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
       bracketed(momentum(model, model.velocity), "%.9g").c_str(),
       bracketed(momentum(model, impact.velocity_after), "%.9g").c_str(), (long long)fastest,
       bracketed(model.of(impact.velocity_after, fastest), "%.6g").c_str());
+  std::string report = text;
+  if (model.rotation) {  // the bodies turn: their energy, the slip's and the angular momentum
+    const granular::EnergyLedger ledger = granular::energy_ledger(model, impact);
+    const double t = impact.impact_time;
+    std::snprintf(
+        text, sizeof text,
+        "rotational energy %.6g J -> %.6g J, slip took %.6g J; angular momentum %s -> %s N m s\n",
+        ledger.rotational_before, ledger.rotational_after, ledger.slip.sum(),
+        bracketed(angular_momentum(model, model.velocity, model.rotation->angular_velocity, t),
+                  "%.9g")
+            .c_str(),
+        bracketed(angular_momentum(model, impact.velocity_after, impact.angular_velocity_after, t),
+                  "%.9g")
+            .c_str());
+    report += text;
+  }
   if (run.configuration && run.configuration->holds())  // else a warning (packing_command.cpp)
-    return text + run.configuration->describe() + "\n";
-  return text;
+    return report + run.configuration->describe() + "\n";
+  return report;
 }
 
 std::string bodies_csv(const PackingModel& model) {
