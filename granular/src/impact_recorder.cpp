@@ -219,10 +219,8 @@ Frames ImpactRecorder::frames(const ImpactOutcome& impact) const {
       const Rotation& rotation = *model_.rotation;
       const Eigen::VectorXd tangential = tangential_impulse(sample);
       v += (rotation.W_t * tangential).cwiseQuotient(model_.mass);
-      Eigen::VectorXd omega = rotation.R_t * tangential;
-      for (Eigen::Index b = 0; b < rotation.body_count(); ++b)
-        omega.segment(rotation.components * b, rotation.components) /= rotation.inertia(b);
-      omega += impact.angular_velocities_before[sample.impact];
+      const Eigen::VectorXd omega =
+          turned(rotation, impact.angular_velocities_before[sample.impact], tangential);
       frames.angular_velocity.emplace_back(omega.data(), omega.data() + omega.size());
     }
     frames.velocity.emplace_back(v.data(), v.data() + v.size());

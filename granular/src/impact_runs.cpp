@@ -166,11 +166,7 @@ ImpactOutcome simulate_impact_numerics(const ContactModel& model,
     const Rotation& rotation = *model.rotation;
     const Eigen::VectorXd& tangential = impact.result.tangential_impulse;
     impact.velocity_after += (rotation.W_t * tangential).cwiseQuotient(model.mass);
-    impact.angular_velocity_after = rotation.R_t * tangential;
-    for (Eigen::Index b = 0; b < rotation.body_count(); ++b)
-      impact.angular_velocity_after.segment(rotation.components * b, rotation.components) /=
-          rotation.inertia(b);
-    impact.angular_velocity_after += rotation.angular_velocity;
+    impact.angular_velocity_after = turned(rotation, rotation.angular_velocity, tangential);
   }
   impact.impact_times = {0.0};
   impact.velocities_before = {model.velocity};

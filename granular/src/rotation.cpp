@@ -97,6 +97,14 @@ Rotation build_rotation(const RotationInput& input) {
   return rotation;
 }
 
+Eigen::VectorXd turned(const Rotation& rotation, const Eigen::VectorXd& before,
+                       const Eigen::VectorXd& tangential) {
+  Eigen::VectorXd omega = rotation.R_t * tangential;
+  for (Eigen::Index b = 0; b < rotation.body_count(); ++b)
+    omega.segment(rotation.components * b, rotation.components) /= rotation.inertia(b);
+  return omega + before;
+}
+
 double rotational_energy(const Rotation& rotation, const Eigen::VectorXd& angular_velocity) {
   double energy = 0.0;
   for (Eigen::Index b = 0; b < rotation.body_count(); ++b)

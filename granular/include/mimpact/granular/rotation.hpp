@@ -46,6 +46,11 @@ struct Rotation {
   }
 };
 
+// The angular velocities (rad/s, components per body) of bodies turning at `before` once the
+// tangential impulses `tangential` (N s, per row) act: before + I^-1 R_t P_t.
+Eigen::VectorXd turned(const Rotation& rotation, const Eigen::VectorXd& before,
+                       const Eigen::VectorXd& tangential);
+
 // The unit tangents of a contact whose unit normal is n: in the plane t = n turned by +90
 // degrees about z (so n x t = z); in space t1 along z x n (x x n when n is along z) and
 // t2 = n x t1. Returns their count, 1 or 2.
