@@ -19,6 +19,10 @@ struct ContactTotals {
   double work = 0.0;                    // J taken from the bodies (the integral of -u dP)
   double stored_energy = 0.0;           // J held now
   double stored_energy_at_start = 0.0;  // J held at the start (a precompressed scene's)
+  // with friction: N s along the contact's tangent rows (Rotation::tangential), and the work its
+  // slip took (J, part of `work`)
+  Eigen::Vector2d tangential_impulse = Eigen::Vector2d::Zero();
+  double slip_work = 0.0;
 };
 
 // Where the impact lies in a compliant run, on the run's clock (s).
@@ -46,6 +50,8 @@ class CompliantEngine {
   virtual double force(Eigen::Index contact) const = 0;  // N, now
   virtual ContactTotals totals(Eigen::Index contact) const = 0;
   virtual Eigen::Vector3d velocity(Eigen::Index body) const = 0;  // m/s
+  // rad/s, of a body that turns (its model has a Rotation): its `components` first, else 0
+  virtual Eigen::Vector3d angular_velocity(Eigen::Index body) const = 0;
   // Whether position() says where the bodies are: not in the frozen geometry, whose
   // configuration is the impact's.
   virtual bool has_positions() const = 0;

@@ -80,7 +80,9 @@ class MovingEngine : public CompliantEngine {
   MovingEngine(const ContactModel& model, const CompliantSpec& spec)
       : motion_(*model.beads, velocities(model), model.beads->closed, moving_options(model, spec)),
         impact_time_(
-            *std::min_element(model.striker_arrivals.begin(), model.striker_arrivals.end())) {}
+            *std::min_element(model.striker_arrivals.begin(), model.striker_arrivals.end())),
+        spin_components_(model.rotation ? model.rotation->components : 0),
+        spins_(model.rotation ? model.rotation->angular_velocity : Eigen::VectorXd()) {}
 
   void advance_to(double t) override { motion_.advance(t); }
   double time() const override { return motion_.time(); }
@@ -97,6 +99,13 @@ class MovingEngine : public CompliantEngine {
             .stored_energy = c.stored_energy};
   }
   Eigen::Vector3d velocity(Eigen::Index body) const override { return motion_.velocity(body); }
+  // its contacts are frictionless (simulate_compliant): the beads keep their spins
+  Eigen::Vector3d angular_velocity(Eigen::Index body) const override {
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+    if (spin_components_ > 0)
+      omega.head(spin_components_) = spins_.segment(spin_components_ * body, spin_components_);
+    return omega;
+  }
   bool has_positions() const override { return true; }
   Eigen::Vector3d position(Eigen::Index body) const override { return motion_.position(body); }
   ImpactSpan impact_span() const override {
@@ -120,6 +129,8 @@ class MovingEngine : public CompliantEngine {
 
   MovingContacts motion_;
   double impact_time_;  // s
+  int spin_components_;
+  Eigen::VectorXd spins_;  // rad/s, spin_components_ per body
 };
 
 // When the impact starts and its last contact opens; ends a free scene once it has come apart.
@@ -177,7 +188,8 @@ class KernelEngine : public CompliantEngine {
  public:
   KernelEngine(const ContactModel& model, std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                const CompliantSpec& spec)
-      : integrator_(kernel_integrator(model, spec).release()),
+      : dimension_(model.dimension),
+        integrator_(kernel_integrator(model, spec).release()),
         simulation_(std::move(system), std::unique_ptr<plugins::CompliantIntegrator>(integrator_),
                     {}, kernel_options(model)),
         watch_(model.precompression > 0.0,
@@ -194,18 +206,30 @@ class KernelEngine : public CompliantEngine {
   double force(Eigen::Index contact) const override { return history().force(contact); }
   ContactTotals totals(Eigen::Index contact) const override {
     const kernel::ContactForceHistory& h = history();
-    return {.impulse = h.impulse(contact),
-            .max_force = h.max_force(contact),
-            .time_of_max_force = h.time_of_max_force(contact),
-            .work = h.work(contact),
-            .stored_energy = h.stored_energy(contact),
-            .stored_energy_at_start = h.stored_energy_at_start(contact)};
+    ContactTotals totals{.impulse = h.impulse(contact),
+                         .max_force = h.max_force(contact),
+                         .time_of_max_force = h.time_of_max_force(contact),
+                         .work = h.work(contact),
+                         .stored_energy = h.stored_energy(contact),
+                         .stored_energy_at_start = h.stored_energy_at_start(contact)};
+    if (h.slip_work.size() > 0) {
+      totals.tangential_impulse = h.tangential_impulse.row(contact).transpose();
+      totals.slip_work = h.slip_work(contact);
+    }
+    return totals;
   }
+  // a body's generalized velocity is [v (d), omega (r)] where it turns (build_packing_system)
   Eigen::Vector3d velocity(Eigen::Index body) const override {
     const Eigen::VectorXd& v = simulation_.system().system(body).velocity();
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-    velocity.head(v.size()) = v;
+    velocity.head(dimension_) = v.head(dimension_);
     return velocity;
+  }
+  Eigen::Vector3d angular_velocity(Eigen::Index body) const override {
+    const Eigen::VectorXd& v = simulation_.system().system(body).velocity();
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+    omega.head(v.size() - dimension_) = v.tail(v.size() - dimension_);
+    return omega;
   }
   bool has_positions() const override { return false; }
   Eigen::Vector3d position(Eigen::Index) const override { return Eigen::Vector3d::Zero(); }
@@ -229,6 +253,7 @@ class KernelEngine : public CompliantEngine {
     return *simulation_.integrator().contact_force_history();
   }
 
+  int dimension_;
   plugins::CompliantIntegrator* integrator_;  // owned by simulation_
   kernel::Simulation simulation_;
   ContactWatch watch_;

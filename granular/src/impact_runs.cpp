@@ -218,10 +218,40 @@ void record(CompliantEngine& engine, const ContactModel& model, Sampling samplin
         }
       run.frames.force.push_back(std::move(all_forces));
       run.frames.velocity.push_back(std::move(all_velocities));
+      if (model.rotation) {
+        std::vector<double> spins;
+        for (Eigen::Index b = 0; b < model.body_count(); ++b)
+          for (int i = 0; i < model.rotation->components; ++i)
+            spins.push_back(engine.angular_velocity(b)(i));
+        run.frames.angular_velocity.push_back(std::move(spins));
+      }
       if (engine.has_positions()) run.frames.position.push_back(std::move(all_positions));
     }
     if (t >= end || engine.ended()) break;
   }
+}
+
+// A compliant run's outcome where the bodies turn: their spins after, the tangential impulses
+// and slip work of the rubbing contacts, and every row's slip after.
+void add_rotation(const CompliantEngine& engine, const ContactModel& model, ImpactOutcome& impact) {
+  const Rotation& rotation = *model.rotation;
+  const int r = rotation.components;
+  impact.angular_velocity_after.resize(r * model.body_count());
+  for (Eigen::Index b = 0; b < model.body_count(); ++b)
+    impact.angular_velocity_after.segment(r * b, r) = engine.angular_velocity(b).head(r);
+  numerics::ImpactResult& result = impact.result;
+  const numerics::TangentialRows& rows = rotation.tangential;
+  result.tangential_impulse = Eigen::VectorXd::Zero(rows.rows());
+  result.slip_work = Eigen::VectorXd::Zero(model.contact_count());
+  for (Eigen::Index c = 0; c < model.contact_count(); ++c) {
+    const ContactTotals totals = engine.totals(c);
+    result.tangential_impulse.segment(rows.first_row[std::size_t(c)], rows.rows_of(c)) =
+        totals.tangential_impulse.head(rows.rows_of(c));
+    result.slip_work(c) = totals.slip_work;
+  }
+  result.slip = rotation.W_t.transpose() * impact.velocity_after +
+                rotation.R_t.transpose() * impact.angular_velocity_after;
+  impact.angular_velocities_before = {rotation.angular_velocity};
 }
 
 // The one assembly of a compliant run's outcome from its engine, once the run is over: the
@@ -254,8 +284,7 @@ void assemble(const CompliantEngine& engine, const ContactModel& model, Complian
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
     impact.velocity_after.segment(b * d, d) = engine.velocity(b).head(d);
   result.velocity = model.W.transpose() * impact.velocity_after;
-  if (model.rotation)  // frictionless contacts: the spins stay
-    impact.angular_velocity_after = model.rotation->angular_velocity;
+  if (model.rotation) add_rotation(engine, model, impact);
   impact.impact_times = {span.start};
   impact.velocities_before = {model.velocity};
   run.most_bodies_in_motion = engine.most_bodies_in_motion();
@@ -270,12 +299,14 @@ CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                 const CompliantSpec& spec, const RecordSpec& record,
                                 int frame_every, const RunLimits& limits) {
-  for (const numerics::ContactLaw& law : model.laws)
-    if (law.friction > 0.0)
-      throw InvalidInput(invalid_value_message(
-          "contact.friction", law.friction,
-          "0 with the compliant method, whose contacts have no tangential force yet; the LZB "
-          "method integrates friction"));
+  if (spec.geometry == Geometry::moving && model.beads)
+    for (const numerics::ContactLaw& law : model.laws)
+      if (law.friction > 0.0)
+        throw InvalidInput(invalid_value_message(
+            "contact.friction", law.friction,
+            "0 with the compliant method in the moving geometry, whose contacts have no "
+            "tangential force yet; compliant.geometry \"frozen\" and the LZB method integrate "
+            "friction"));
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
   RecordingBudget budget = compliant_budget(model, record, frame_every, limits);

@@ -1,18 +1,11 @@
 #include "lzb_adaptive_friction.hpp"
 
-#include <cmath>
-#include <limits>
-
 namespace mimpact::numerics::adaptive_lzb {
 
 using Eigen::Index;
 using Sparse = Eigen::SparseMatrix<double>;
 
-namespace {
-
-double norm(const double* v, int n) { return n == 1 ? std::abs(v[0]) : std::hypot(v[0], v[1]); }
-
-}  // namespace
+using coulomb::norm;
 
 void Friction::prepare(const ImpactIntegrator::Input& input) {
   on_ = input.laws.frictional();
@@ -51,7 +44,7 @@ void Friction::size_segment() {
   for (Index j : previous_)  // out of the impact since: its mode is chosen again when it returns
     if (const int p = impact_.contact.member_of[std::size_t(j)];
         p < 0 || std::size_t(p) >= segment.active)
-      contacts_[std::size_t(j)].mode = Mode::choose;
+      contacts_[std::size_t(j)].phase.mode = Mode::choose;
   members_.clear();
   slots_.clear();
   previous_.clear();
@@ -92,13 +85,10 @@ void Friction::size_segment() {
 void Friction::choose_modes() {
   const double tolerance = impact_.velocity_tolerance;
   for (const Member& f : members_) {
-    ContactFriction& c = contacts_[std::size_t(f.contact)];
-    if (c.mode != Mode::choose) continue;
-    const double* s = &slots_[f.slot].start;
-    const double speed = f.rows == 1 ? std::abs(s[0]) : std::hypot(s[0], slots_[f.slot + 1].start);
-    c.mode = speed > tolerance ? Mode::slip : Mode::stick;
-    c.live = c.mode == Mode::slip && f.rows == 2;
-    if (c.mode == Mode::slip && f.rows == 1) c.direction = {s[0] > 0.0 ? 1.0 : -1.0, 0.0};
+    coulomb::Phase& phase = contacts_[std::size_t(f.contact)].phase;
+    if (phase.mode != Mode::choose) continue;
+    const double s[2] = {slots_[f.slot].start, f.rows == 2 ? slots_[f.slot + 1].start : 0.0};
+    phase.start(s, f.rows, tolerance);
   }
   const State& y = impact_.segment.y;  // the segment's start
   normal_forces(y, true);
@@ -109,24 +99,18 @@ void Friction::choose_modes() {
     const Member* worst = nullptr;
     double worst_excess = 0.0;
     for (const Member& f : members_) {
-      const ContactFriction& c = contacts_[std::size_t(f.contact)];
-      if (c.mode != Mode::stick) continue;
-      const double excess = c.forced ? std::numeric_limits<double>::infinity()
-                                     : norm(&scratch_.rates[f.slot], f.rows) -
-                                           mu_[std::size_t(f.contact)] * scratch_.forces[f.active];
+      const coulomb::Phase& phase = contacts_[std::size_t(f.contact)].phase;
+      if (phase.mode != Mode::stick) continue;
+      const double excess = phase.excess(&scratch_.rates[f.slot], f.rows,
+                                         mu_[std::size_t(f.contact)] * scratch_.forces[f.active]);
       if (excess > worst_excess) {
         worst = &f;
         worst_excess = excess;
       }
     }
     if (!worst) break;
-    ContactFriction& c = contacts_[std::size_t(worst->contact)];
-    const double* x = &scratch_.rates[worst->slot];
-    const double size = norm(x, worst->rows);
-    c.mode = Mode::slip;
-    c.live = c.forced = false;
-    for (int k = 0; k < worst->rows; ++k)
-      c.direction[std::size_t(k)] = size > 0.0 ? -x[k] / size : 0.0;
+    contacts_[std::size_t(worst->contact)].phase.slip_against(&scratch_.rates[worst->slot],
+                                                              worst->rows);
   }
 }
 
@@ -134,7 +118,7 @@ void Friction::factor_stick() {
   stick_slots_.clear();
   for (Slot& slot : slots_) slot.stick = -1;
   for (const Member& f : members_)
-    if (contacts_[std::size_t(f.contact)].mode == Mode::stick)
+    if (contacts_[std::size_t(f.contact)].phase.mode == Mode::stick)
       for (int k = 0; k < f.rows; ++k) {
         slots_[f.slot + std::size_t(k)].stick = int(stick_slots_.size());
         stick_slots_.push_back(f.slot + std::size_t(k));
@@ -192,14 +176,10 @@ void Friction::slips(const State& y) {
 
 void Friction::rates() {
   for (const Member& f : members_) {
-    const ContactFriction& c = contacts_[std::size_t(f.contact)];
-    if (c.mode != Mode::slip) continue;
-    const double limit = mu_[std::size_t(f.contact)] * scratch_.forces[f.active];
-    const double* s = &scratch_.slips[f.slot];
-    const double speed = c.live ? norm(s, f.rows) : 1.0;
-    for (int k = 0; k < f.rows; ++k)
-      scratch_.rates[f.slot + std::size_t(k)] = c.live ? (speed > 0.0 ? -limit * s[k] / speed : 0.0)
-                                                       : -limit * c.direction[std::size_t(k)];
+    const coulomb::Phase& phase = contacts_[std::size_t(f.contact)].phase;
+    if (phase.mode != Mode::slip) continue;
+    phase.slip_force(mu_[std::size_t(f.contact)] * scratch_.forces[f.active],
+                     &scratch_.slips[f.slot], f.rows, &scratch_.rates[f.slot]);
   }
   if (stick_slots_.empty()) return;
   // H_tt[S,S] x = -(H_tn[S,:] F + H_tt[S,slip] f_slip): ds/dt = 0 on the sticking rows
@@ -251,18 +231,9 @@ void Friction::derivative(const State& y, State& dydt) {
 }
 
 std::array<double, 2> Friction::values_of(const Member& f) const {
-  const ContactFriction& c = contacts_[std::size_t(f.contact)];
-  const double* s = &scratch_.slips[f.slot];
-  const double speed = norm(s, f.rows);
-  const double tolerance = impact_.velocity_tolerance;
-  if (c.mode == Mode::stick)
-    return {mu_[std::size_t(f.contact)] * scratch_.forces[f.active] -
-                norm(&scratch_.rates[f.slot], f.rows),
-            1.0};
-  if (c.live) return {speed - tolerance, 1.0};
-  double along = 0.0;
-  for (int k = 0; k < f.rows; ++k) along += s[k] * c.direction[std::size_t(k)];
-  return {along, f.rows == 2 ? 2.0 * tolerance - speed : 1.0};
+  return contacts_[std::size_t(f.contact)].phase.watched(
+      mu_[std::size_t(f.contact)] * scratch_.forces[f.active], &scratch_.slips[f.slot],
+      &scratch_.rates[f.slot], f.rows, impact_.velocity_tolerance);
 }
 
 void Friction::watch(const State& y, std::vector<double>& values) {
@@ -296,18 +267,15 @@ void Friction::locate(double t0, double t1, double segment_start, const std::vec
           crossing_time(before[2 * f + std::size_t(which)], after[2 * f + std::size_t(which)], t0,
                         t1, segment_start, q);
       if (!crossing) continue;
-      const bool stuck = contacts_[std::size_t(members_[f].contact)].mode == Mode::stick;
+      const bool stuck = contacts_[std::size_t(members_[f].contact)].phase.mode == Mode::stick;
       const int kind = which == 1 ? slip_armed : stuck ? stick_end : slip_stop;
       found.push_back({long(f), kind, *crossing});
     }
 }
 
 void Friction::apply(const Crossing& crossing) {
-  ContactFriction& c = contacts_[std::size_t(members_[std::size_t(crossing.index)].contact)];
-  if (crossing.kind == stick_end)
-    c.forced = true;  // still sticking: choose_modes turns it to slip where its force points
-  else
-    c.mode = Mode::choose;
+  contacts_[std::size_t(members_[std::size_t(crossing.index)].contact)].phase.pass(crossing.kind ==
+                                                                                   stick_end);
 }
 
 void Friction::account_work(const State& y) {

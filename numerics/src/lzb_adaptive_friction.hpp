@@ -2,13 +2,9 @@
 
 // Coulomb friction in the adaptive LZB impact (docs/model.md, "Friction"). Beside each active
 // contact's delta_j and normal impulse P_j, a contact with friction mu_j > 0 carries its
-// tangential impulse P_t (one row in the plane, two in space) in the ODE state, with
-//   slip:  dP_t/dt = -mu_j F_j d,  d the slip's direction (s/|s| in space, where it turns:
-//          Keller 1986; fixed in the plane, and for a slip just started from rest)
-//   stick: dP_t/dt such that ds/dt = 0 on the sticking rows, while |dP_t/dt| <= mu_j F_j
-// (F_j = dP_j/dt the normal force). Slip stopping, stick ending and a slip from rest growing
-// free are located as events (EventKind); where a slip stops, the contact sticks if the force
-// that keeps it is within the cone, else slips the other way (Stronge, Impact Mechanics, 2000).
+// tangential impulse P_t (one row in the plane, two in space) in the ODE state, driven by its
+// coulomb::Phase with F_j = dP_j/dt as the normal force; its switches are located as events
+// (EventKind).
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -17,6 +13,7 @@
 #include <vector>
 
 #include "lzb_adaptive_state.hpp"
+#include "mimpact/numerics/coulomb_phase.hpp"
 #include "mimpact/numerics/dense_output.hpp"
 #include "mimpact/numerics/event_scan.hpp"
 #include "mimpact/numerics/impact_integrator.hpp"
@@ -70,7 +67,7 @@ class Friction {
   void finish(ImpactResult& result) const;
 
  private:
-  enum class Mode : unsigned char { choose, slip, stick };
+  using Mode = coulomb::Phase::Mode;
   struct Member {
     std::size_t active;  // its place among the segment's active members
     Eigen::Index contact, row;
@@ -91,11 +88,8 @@ class Friction {
   std::array<double, 2> values_of(const Member& member) const;  // from the scratch
 
   struct ContactFriction {  // across segments
-    Mode mode = Mode::choose;
-    bool live = false;                  // a slip in space whose d is s/|s|
-    bool forced = false;                // its stick ended: it slips where the force points
-    std::array<double, 2> direction{};  // a fixed slip's d
-    double slip_work = 0.0;             // J
+    coulomb::Phase phase;
+    double slip_work = 0.0;  // J
   };
   struct Slot {  // one tangential row of the segment
     Eigen::Index row = 0;

@@ -6,7 +6,6 @@
 
 #include <Eigen/Sparse>
 #include <algorithm>
-#include <cfloat>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -31,18 +30,6 @@ enum EventKind : int {
   stick_end,   // the force that keeps it stuck reaches mu F: it slips
   slip_armed,  // a slip started from rest has grown to 2 tolerance * V: its direction is free
 };
-
-// Where a watched value (> 0 before its switch, <= 0 once it happened) crossed 0 in the step
-// [t0, t1] of a segment begun at segment_start, from its values q0 and q1 at the ends: none if
-// it did not (or did before this step), t0 if it was past already when the segment began
-// (rounding), else narrowed by TOMS 748 on value_at(t) to a few ulp of t.
-template <class Value>
-std::optional<double> crossing_time(double q0, double q1, double t0, double t1,
-                                    double segment_start, Value&& value_at) {
-  if (q1 > 0.0 || (q0 <= 0.0 && t0 != segment_start)) return std::nullopt;
-  if (!(q0 > 0.0)) return t0;
-  return narrow_crossing(value_at, t0, t1, q0, q1, 4.0 * DBL_EPSILON * t1).upper;
-}
 
 // The watched quantities at one time: the members' velocities and the active ones' delta;
 // with friction, two per frictional member (Friction::watch).

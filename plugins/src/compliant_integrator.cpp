@@ -123,6 +123,7 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
     if (!s.body(k).can_fly) set_in_motion(k);
   for (Index j = 0; j < m; ++j) predict_join(j);
   slow_speed_ = options_.ode.relative_tolerance * s.anchor_v.cwiseAbs().maxCoeff();
+  prepare_friction();
   restart();
   update_stored_energy();
   history_.stored_energy_at_start = history_.stored_energy;
@@ -163,62 +164,11 @@ void CompliantIntegrator::restart() {
     samples->rate.resize(s.motion.watched.size());
   }
   s.scratch.generalized.resize(s.motion.coordinates);
+  if (s.friction.on) restart_friction();
   s.probe = s.y;
   start_accounting();
   // after an event, the step the integration last took
   s.dense->restart(s.y, time_, s.dense->last_step() > 0.0 ? s.dense->last_step() : 1e-7);
-}
-
-// ---- the motion ----------------------------------------------------------------------------
-
-void CompliantIntegrator::evaluate(double t, const double* y, double* dydt) {
-  State& s = *state_;
-  const Index n = s.motion.coordinates;
-  s.scratch.generalized.setZero();
-  if (!s.linear) {  // every body moves: the whole configuration
-    for (Index k : s.motion.moving) {
-      const Body& b = s.body(k);
-      for (Index i = 0; i < b.size; ++i) {
-        s.scratch.q_all(b.offset + i) = s.anchor_q(b.offset + i) + y[b.slot + i];
-        s.scratch.v_all(b.offset + i) = y[n + b.slot + i];
-      }
-    }
-  }
-  for (Index j : s.motion.joined) {
-    const Contact& c = s.contact(j);
-    double gap, rate;
-    if (s.linear) {
-      linear_gap(s, c, t, y, gap, rate);
-    } else {
-      gap = system_->gap(j, s.scratch.q_all);
-    }
-    const double f = contact_force(std::size_t(j), -gap);
-    dydt[2 * n + c.slot] = f;
-    if (f == 0.0) continue;
-    if (s.linear) {
-      for (const JacobianEntry& entry : c.entries)
-        s.scratch.generalized(s.body(entry.body).slot + entry.local) += entry.value * f;
-    } else {
-      system_->for_each_jacobian_entry(j, s.scratch.q_all, [&](Index coordinate, double value) {
-        const Body& b = s.body(s.body_of_coordinate[std::size_t(coordinate)]);
-        s.scratch.generalized(b.slot + s.local_of_coordinate[std::size_t(coordinate)]) += value * f;
-      });
-    }
-  }
-  for (Index k : s.motion.moving) {
-    Body& b = s.body(k);
-    b.q = s.anchor_q.segment(b.offset, b.size) + Eigen::Map<const VectorXd>(y + b.slot, b.size);
-    b.v = Eigen::Map<const VectorXd>(y + n + b.slot, b.size);
-    b.refresh(system_->system(k), b.q);
-    Eigen::Map<VectorXd> acceleration(dydt + n + b.slot, b.size);
-    acceleration = s.scratch.generalized.segment(b.slot, b.size);
-    if (b.has_force) {
-      system_->system(k).force(t, b.q, b.v, b.force);
-      acceleration += b.force;
-    }
-    b.apply_inverse(acceleration);
-    Eigen::Map<VectorXd>(dydt + b.slot, b.size) = b.v;
-  }
 }
 
 kernel::StepReport CompliantIntegrator::advance(double target) {
@@ -316,8 +266,10 @@ void CompliantIntegrator::measure(double t, std::span<const Index> contacts,
 bool CompliantIntegrator::next_event(double a, double b, Event& event) {
   State& s = *state_;
   const numerics::Overlaps overlaps{.join = s.join_overlap, .leave = s.leave_overlap};
+  const bool rubbing = !s.friction.rubbing.empty();
   auto watch = [&](double t, GapSamples& samples) {
     measure(t, s.motion.watched, samples.gap, samples.rate);
+    if (rubbing) watch_friction(t, samples.friction);
   };
   s.scratch.event_gap.resize(1);
   s.scratch.event_rate.resize(1);
@@ -357,6 +309,7 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
       if (j == s.motion.last_event && bracket.upper <= a + options_.ode.event_tolerance) continue;
       found.push_back({long(j), int(crossed.kind), bracket.upper});
     }
+    if (rubbing) locate_switches(t0, t1, before.friction, after.friction, found);
   };
   const std::vector<Crossing> found =
       numerics::scan_events({.start = a,
@@ -368,7 +321,10 @@ bool CompliantIntegrator::next_event(double a, double b, Event& event) {
   for (const Crossing& crossing : found)
     if (crossing.time < earliest) {
       earliest = crossing.time;
-      event = {Index(crossing.index), ContactEvent(crossing.kind), crossing.time};
+      const int coulomb = coulomb_switch(crossing.kind);
+      event = {Index(crossing.index),
+               coulomb >= 0 ? ContactEvent::none : ContactEvent(crossing.kind), crossing.time,
+               coulomb};
     }
   return next_predicted_join(a, std::min(b, earliest), event) || earliest != kNever;
 }
@@ -403,6 +359,12 @@ void CompliantIntegrator::end_segment(double end) {
 
 bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& report) {
   State& s = *state_;
+  if (event.coulomb >= 0) {  // the contact's phase switches: the integration restarts there
+    commit_motion();
+    pass_switch(event);
+    restart();
+    return false;
+  }
   s.motion.last_event = event.contact;
   const std::size_t i = std::size_t(event.contact);
   if (event.kind == ContactEvent::turning) {
@@ -464,6 +426,12 @@ void CompliantIntegrator::finish_advance(bool reached_target) {
   }
   for (Index j : s.motion.joined)
     history_.impulse(j) = s.contact(j).impulse + s.y[std::size_t(2 * n + s.contact(j).slot)];
+  for (Index j : s.friction.rubbing) {
+    const compliant::Rub& rub = s.contact(j).rub;
+    for (int k = 0; k < rub.rows; ++k)
+      history_.tangential_impulse(j, k) =
+          rub.impulse[std::size_t(k)] + s.y[std::size_t(rub.slot + k)];
+  }
   update_stored_energy();
   history_.all_open = contacts_open();
 }

@@ -68,6 +68,7 @@ void CompliantIntegrator::account_work(double t) {
     }
   }
   s.ledger.accounted_time = t;
+  account_slip();
 }
 
 void CompliantIntegrator::update_stored_energy() {

@@ -3,16 +3,71 @@
 #include "compliant_state.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
 
-// The moving-body set of the compliant integrator (docs/design/compliant_contacts.md): which bodies
-// are integrated and which fly freely, the contacts that join and leave, the joins computed in
-// closed form between bodies in free flight.
+// The moving-body set of the compliant integrator (docs/design/compliant_contacts.md): the
+// right-hand side of its motion, which bodies are integrated and which fly freely, the contacts
+// that join and leave, the joins computed in closed form between bodies in free flight.
 namespace mimpact::plugins {
 
 using compliant::Body;
 using compliant::Contact;
 using compliant::GapSamples;
 using compliant::JacobianEntry;
+using compliant::linear_gap;
 using kernel::Index;
+using kernel::VectorXd;
+
+void CompliantIntegrator::evaluate(double t, const double* y, double* dydt) {
+  State& s = *state_;
+  const Index n = s.motion.coordinates;
+  s.scratch.generalized.setZero();
+  if (!s.linear) {  // every body moves: the whole configuration
+    for (Index k : s.motion.moving) {
+      const Body& b = s.body(k);
+      for (Index i = 0; i < b.size; ++i) {
+        s.scratch.q_all(b.offset + i) = s.anchor_q(b.offset + i) + y[b.slot + i];
+        s.scratch.v_all(b.offset + i) = y[n + b.slot + i];
+      }
+    }
+  }
+  for (Index j : s.motion.joined) {
+    const Contact& c = s.contact(j);
+    double gap, rate;
+    if (s.linear) {
+      linear_gap(s, c, t, y, gap, rate);
+    } else {
+      gap = system_->gap(j, s.scratch.q_all);
+    }
+    const double f = contact_force(std::size_t(j), -gap);
+    dydt[2 * n + c.slot] = f;
+    if (f == 0.0) continue;
+    if (s.linear) {
+      for (const JacobianEntry& entry : c.entries)
+        s.scratch.generalized(s.body(entry.body).slot + entry.local) += entry.value * f;
+    } else {
+      system_->for_each_jacobian_entry(j, s.scratch.q_all, [&](Index coordinate, double value) {
+        const Body& b = s.body(s.body_of_coordinate[std::size_t(coordinate)]);
+        s.scratch.generalized(b.slot + s.local_of_coordinate[std::size_t(coordinate)]) += value * f;
+      });
+    }
+  }
+  const bool rubbing = !s.friction.rubbing.empty();
+  if (rubbing) add_slip_forces(y, dydt);
+  for (Index k : s.motion.moving) {
+    Body& b = s.body(k);
+    b.q = s.anchor_q.segment(b.offset, b.size) + Eigen::Map<const VectorXd>(y + b.slot, b.size);
+    b.v = Eigen::Map<const VectorXd>(y + n + b.slot, b.size);
+    b.refresh(system_->system(k), b.q);
+    Eigen::Map<VectorXd> acceleration(dydt + n + b.slot, b.size);
+    acceleration = s.scratch.generalized.segment(b.slot, b.size);
+    if (b.has_force) {
+      system_->system(k).force(t, b.q, b.v, b.force);
+      acceleration += b.force;
+    }
+    b.apply_inverse(acceleration);
+    Eigen::Map<VectorXd>(dydt + b.slot, b.size) = b.v;
+  }
+  if (rubbing) tangential_rates(dydt);
+}
 
 void CompliantIntegrator::commit_motion() {
   State& s = *state_;
@@ -35,6 +90,7 @@ void CompliantIntegrator::commit_motion() {
     c.impulse += s.y[impulses + std::size_t(c.slot)];
     history_.impulse(j) = c.impulse;
   }
+  commit_friction();
 }
 
 void CompliantIntegrator::set_in_motion(Index k) {
@@ -89,6 +145,7 @@ void CompliantIntegrator::join(Index j) {
 void CompliantIntegrator::leave(Index j) {
   State& s = *state_;
   s.contact(j).joined = false;
+  s.contact(j).rub.phase = {};  // chosen again if it joins again
   std::erase(s.motion.joined, j);
   max_compression_[std::size_t(j)] = 0.0;  // the contact forgets
   history_.force(j) = 0.0;
@@ -144,7 +201,7 @@ void CompliantIntegrator::forget_prediction(Index j) {
 bool CompliantIntegrator::collide_instantly(Index j) {
   State& s = *state_;
   Contact& c = s.contact(j);
-  if (!s.linear) return false;
+  if (!s.linear || c.rub.rows > 0) return false;  // a contact that rubs is integrated
   double rate = 0.0, h = 0.0;
   for (const JacobianEntry& entry : c.entries) {
     Body& b = s.body(entry.body);

@@ -4,9 +4,12 @@
 // sees them, and its state. The parts: compliant_integrator.cpp (the advance: steps, events
 // located and handled, the restarts of the integration), compliant_motion.cpp (the moving-body
 // set: who is integrated, who flies freely, joins computed in closed form), compliant_ledger.cpp
-// (the contact laws' force and energy, the energy ledger); the events' classification is a pure
-// function (mimpact/numerics/contact_events.hpp).
+// (the contact laws' force and energy, the energy ledger), compliant_friction.cpp (Coulomb's law
+// on the contacts that rub); the events' classification is a pure function
+// (mimpact/numerics/contact_events.hpp).
 
+#include <Eigen/Cholesky>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "mimpact/numerics/contact_events.hpp"
+#include "mimpact/numerics/coulomb_phase.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 #include "mimpact/plugins/internal/mass_block.hpp"
 
@@ -49,6 +53,19 @@ struct JacobianEntry {
   double value = 0.0;
 };
 
+// A contact's Coulomb friction with a rigid tangential response: its tangent rows W_t (constant:
+// linear relations) and its phase (numerics::coulomb::Phase), with time carrying it.
+struct Rub {
+  int rows = 0;  // 0: frictionless
+  double mu = 0.0;
+  std::array<std::vector<JacobianEntry>, 2> tangents;
+  numerics::coulomb::Phase phase;
+  Index slot = -1;  // of its first row's tangential impulse in the integrated state, while joined
+  std::array<double, 2> impulse{};  // N s along its rows, until the last commit
+  // where its slip work was last accounted: the impulses since the last restart (N s), s (m/s)
+  std::array<double, 2> accounted_impulse{}, accounted_slip{};
+};
+
 struct Contact {
   std::vector<JacobianEntry> entries;  // linear relations: constant
   double anchor_gap = 0.0;             // linear relations: the gap at the bodies' anchors (m)
@@ -61,6 +78,7 @@ struct Contact {
   double accounted_impulse = 0.0, accounted_rate = 0.0;
   std::uint32_t version = 0;  // invalidates its pending join prediction
   bool predicted = false;
+  Rub rub;
 };
 
 // A join computed in closed form, between bodies in free flight.
@@ -74,6 +92,7 @@ struct PredictedJoin {
 // Gaps (m) and rates (m/s) of the watched contacts at one time.
 struct GapSamples {
   std::vector<double> gap, rate;
+  std::vector<double> friction;  // two per rubbing contact (coulomb::Phase::watched)
 };
 
 // The integrator's state (CompliantIntegrator holds one).
@@ -121,9 +140,26 @@ struct State {
     std::vector<double> accounted_velocity;
     double accounted_time = 0.0;
   };
+  // The joined contacts that rub, their tangential impulses in y from `first_slot` on (after the
+  // normal impulses), and the workspace of their forces: per slot s (m/s) and the tangential
+  // force (N); the sticking slots and their block of H_tt = W_t^T M^-1 W_t, factorized.
+  struct Friction {
+    bool on = false;              // some contact has friction
+    double slip_tolerance = 0.0;  // m/s
+    double segment_start = 0.0;   // s, of the restart
+    std::vector<Index> rubbing;
+    Index first_slot = 0, slots = 0;
+    std::vector<double> slip, force;
+    std::vector<std::pair<Index, int>> sticking;  // (contact, row)
+    Eigen::LDLT<MatrixXd> stick_factor;
+    VectorXd stick_force, stick_generalized;
+    std::vector<double> dydt;    // the right-hand side where the watched values are read
+    std::vector<double> values;  // the watched values at one time, while narrowing
+  };
   Motion motion;
   Scratch scratch;
   Ledger ledger;
+  Friction friction;
 
   compliant::Body& body(Index k) { return bodies[std::size_t(k)]; }
   compliant::Contact& contact(Index j) { return contacts[std::size_t(j)]; }
@@ -143,6 +179,9 @@ struct Event {
   kernel::Index contact = -1;
   numerics::ContactEvent kind = numerics::ContactEvent::none;
   double time = 0.0;
+  // a switch of the contact's Coulomb phase instead (kind none): its first watched value
+  // crossed (a slip stopped or a stick ended), or its second (a slip from rest grew free)
+  int coulomb = -1;
 };
 
 // Gap and rate of contact j along the integrated state y at time t.

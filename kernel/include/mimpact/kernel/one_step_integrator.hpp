@@ -43,6 +43,11 @@ struct ContactForceHistory {
   // at the start + work_of_forces - sum of work; contact j dissipated work + start - now.
   VectorXd work, stored_energy, stored_energy_at_start;
   double work_of_forces = 0.0;
+  // Contacts with friction (their relation's tangent rows): the tangential impulse along each
+  // row since the run began (N s; columns past the contact's rows stay 0), and the work its slip
+  // took (J), which is part of its `work`. Empty where no contact has friction.
+  Eigen::MatrixX2d tangential_impulse;
+  VectorXd slip_work;
 };
 
 // Moves the system through time: smooth motion between nonsmooth events, which it locates

@@ -10,6 +10,7 @@
 #include "mimpact/common/fields.hpp"
 #include "mimpact/kernel/one_step_integrator.hpp"
 #include "mimpact/numerics/contact_law.hpp"
+#include "mimpact/numerics/event_scan.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 
 namespace mimpact::plugins {
@@ -141,6 +142,25 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
   void update_stored_energy();
   // every contact open, and none approaching
   bool contacts_open();
+
+  // Coulomb's law on the contacts that rub (compliant_friction.cpp): each contact's tangent rows
+  // and mu; at a restart, the rubbing contacts' impulses appended to y and their phases chosen;
+  // the forces of the slipping rows (onto the generalized force, before M^-1) and of the
+  // sticking rows (onto the accelerations, after it) with every row's dP_t/dt; the switches watched
+  // and located along the step, and passed; the impulses committed; the slip's work accounted at t
+  void prepare_friction();
+  void restart_friction();
+  void add_slip_forces(const double* y, double* dydt);
+  void tangential_rates(double* dydt);
+  void factor_stick();
+  void watch_friction(double t, std::vector<double>& values);
+  void locate_switches(double t0, double t1, const std::vector<double>& before,
+                       const std::vector<double>& after, std::vector<numerics::Crossing>& found);
+  void pass_switch(const Event& event);
+  // the watched value whose crossing a Crossing's kind says (locate_switches), -1 for a contact's
+  static int coulomb_switch(int kind);
+  void commit_friction();
+  void account_slip();
 
   CompliantOptions options_;
   kernel::NonSmoothDynamicalSystem* system_ = nullptr;
