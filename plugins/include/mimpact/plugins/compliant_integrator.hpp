@@ -66,6 +66,9 @@ struct CompliantOptions {
 // at the integration's own error speeds) collides instantly, u+ = -e u-, instead of joining: its
 // overlap lies below what the error control resolves, and integrating it only fed those errors and
 // kept ever more bodies in motion. With a nonlinear relation every body and contact is integrated.
+// A contact with friction (its law's mu > 0, its linear relation's tangent rows) follows
+// Coulomb's law with a rigid tangential response (compliant_friction.cpp; docs/model.md,
+// section 16) and is always integrated, never collided instantly.
 // It solves no impact problem: every contact is compliant. Registered as "compliant".
 namespace compliant {
 struct State;  // the integration's state and its bodies and contacts (src/compliant_state.hpp)
