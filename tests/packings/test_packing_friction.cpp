@@ -280,17 +280,20 @@ TEST(PackingFriction, BadOffsetsSpinsAndUnsupportedCombinationsAreRefused) {
       std::string::npos);
 }
 
-// The frames of a frictional impact take its tangential impulses: at every frame the bodies keep
-// their momentum and angular momentum (the impulses so far are internal), and the last frame is
-// the run's post-impact state, as the integrators assembled it.
+// The frames of a frictional impact take its tangential impulses (the LZB integrators), or the
+// spins of the compliant contacts in the frozen configuration: at every frame the bodies keep
+// their momentum and angular momentum (the impulses so far are internal, along and across the
+// frozen lines of contact), and the last frame is the run's post-impact state.
 TEST(PackingFriction, FramesCarryTheTangentialImpulsesAndTheSpins) {
   for (const char* impact :
-       {R"({"integrator": "adaptive", "tolerance": 1e-10})", R"({"delta_p": 2e-6})"}) {
+       {R"("impact": {"integrator": "adaptive", "tolerance": 1e-10})",
+        R"("impact": {"delta_p": 2e-6})",
+        R"("method": "compliant", "compliant": {"tolerance": 1e-10, "geometry": "frozen"})"}) {
     const PackingCase run = run_packing("{" + kSteel + R"(, "lattice": {"type": "hexagonal",
         "rows": 4, "columns": 4, "radius": 0.005}, "strikers": [{"target": [0, 1],
         "radius": 0.005, "velocity": [0, 1], "offset": 0.003, "spin": -150}],
         "contact": {"restitution": 0.9, "friction": 0.3}, "configuration_check": {"enabled": false},
-        "record": {"beads": [1, 16], "interval": 2e-6, "every": 50, "frames": 1}, "impact": )" +
+        "record": {"beads": [1, 16], "interval": 2e-6, "every": 50, "frames": 1}, )" +
                                         std::string(impact) + "}");
     const packings::PackingModel& model = run.model;
     const granular::Frames& frames = run.run.frames;
