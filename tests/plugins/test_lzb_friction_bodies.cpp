@@ -10,7 +10,11 @@
 #include "../support/planar_frictional_impact.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
+#include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/kernel/scleronomous_relation.hpp"
+#include "mimpact/kernel/simulation.hpp"
+#include "mimpact/plugins/acceleration_lcp_problem.hpp"
+#include "mimpact/plugins/event_driven_integrator.hpp"
 #include "mimpact/plugins/lzb_impact_problem.hpp"
 #include "mimpact/plugins/lzb_law.hpp"
 
@@ -107,6 +111,48 @@ TEST(FrictionThroughTheKernel, FrictionWithoutTangentRowsIsRefused) {
     EXPECT_NE(text.find("tangent rows"), std::string::npos) << text;
   }
   EXPECT_EQ(b.body->velocity(), Eigen::Vector3d(0.5, -1.0, 0.0));  // untouched
+}
+
+// A disc resting on a rough floor under gravity, (x, y, angle) with its contact's slip
+// x' + r angle': at rest it stays, held by m g; sent sliding at 1 m/s, the event-driven scheme
+// refuses to hold it closed without Coulomb's law in the smooth motion, naming the contact and
+// its friction, instead of letting it slide frictionlessly.
+TEST(FrictionThroughTheKernel, APersistentContactThatSlidesIsRefused) {
+  for (const double speed : {0.0, 1.0}) {
+    const double m = 0.1, r = 0.01, g = 9.81;
+    kernel::LagrangianLinearTIDS::Matrices matrices;
+    matrices.mass = Eigen::Vector3d(m, m, 0.5 * m * r * r).asDiagonal();
+    matrices.external_force = Eigen::Vector3d(0.0, -m * g, 0.0);
+    auto disc = std::make_shared<kernel::LagrangianLinearTIDS>(
+        Eigen::Vector3d(0.0, r, 0.0), Eigen::Vector3d(speed, 0.0, 0.0), matrices, "disc");
+    auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
+    system->add(disc);
+    system->add(std::make_shared<kernel::Interaction>(
+        disc,
+        std::make_shared<kernel::LinearRelation>(Eigen::RowVector3d(0, 1, 0), -r,
+                                                 Eigen::MatrixXd(Eigen::RowVector3d(1, 0, r))),
+        std::make_shared<LzbLaw>(
+            numerics::ContactLaw{.stiffness = 1e9, .restitution = 0.5, .friction = 0.3}),
+        "floor"));
+    kernel::Simulation simulation(system, std::make_unique<EventDrivenIntegrator>(),
+                                  {.impacts = std::make_unique<LzbImpactProblem>(),
+                                   .contact_forces = std::make_unique<AccelerationLcpProblem>()});
+    if (speed == 0.0) {
+      simulation.run(0.0, 0.1);
+      EXPECT_NEAR(disc->position()(1), r, 1e-12);
+      EXPECT_EQ(disc->velocity(), Eigen::Vector3d::Zero());
+      continue;
+    }
+    try {
+      simulation.run(0.0, 0.1);
+      FAIL() << "slid without friction";
+    } catch (const Error& error) {
+      const std::string text = error.what();
+      EXPECT_NE(text.find("interaction 'floor' (friction = 0.3) slides at 1 m/s"),
+                std::string::npos)
+          << text;
+    }
+  }
 }
 
 }  // namespace
