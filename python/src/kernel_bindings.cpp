@@ -332,6 +332,24 @@ void bind_reports(py::module_& module) {
       .def_readonly("interactions", &kernel::ContactForces::interactions)
       .def_readonly("force", &kernel::ContactForces::force)
       .def_readonly("acceleration", &kernel::ContactForces::acceleration);
+  using kernel::ContactForceHistory;
+  py::class_<ContactForceHistory>(
+      module, "ContactForceHistory",
+      "the compliant contacts' forces since the run began, per interaction: force now, max_force "
+      "and time_of_max_force, impulse (N s), the ledger's work, stored_energy and "
+      "stored_energy_at_start (J); with friction, tangential_impulse (N s, two columns per "
+      "interaction, its tangent rows) and slip_work (J), empty otherwise")
+      .def_readonly("force", &ContactForceHistory::force)
+      .def_readonly("max_force", &ContactForceHistory::max_force)
+      .def_readonly("time_of_max_force", &ContactForceHistory::time_of_max_force)
+      .def_readonly("impulse", &ContactForceHistory::impulse)
+      .def_readonly("all_open", &ContactForceHistory::all_open)
+      .def_readonly("work", &ContactForceHistory::work)
+      .def_readonly("stored_energy", &ContactForceHistory::stored_energy)
+      .def_readonly("stored_energy_at_start", &ContactForceHistory::stored_energy_at_start)
+      .def_readonly("work_of_forces", &ContactForceHistory::work_of_forces)
+      .def_readonly("tangential_impulse", &ContactForceHistory::tangential_impulse)
+      .def_readonly("slip_work", &ContactForceHistory::slip_work);
   py::class_<kernel::StepReport>(module, "StepReport")
       .def_readonly("time", &kernel::StepReport::time)
       .def_readonly("event", &kernel::StepReport::event)
@@ -395,6 +413,13 @@ void bind_simulation(py::module_& module) {
            "raises RuntimeError")
       .def_property_readonly("time",
                              [](const PythonSimulation& self) { return self.simulation->time(); })
+      .def_property_readonly(
+          "contact_force_history",
+          [](const PythonSimulation& self) -> const kernel::ContactForceHistory* {
+            return self.simulation->integrator().contact_force_history();
+          },
+          py::return_value_policy::reference_internal,
+          "the integrator's ContactForceHistory (the compliant integrator's), or None")
       .def_property_readonly(
           "system",
           [](const PythonSimulation& self) -> const kernel::NonSmoothDynamicalSystem& {

@@ -119,13 +119,16 @@ def test_bad_input_names_the_field():
         simulation.run(0.0, 1.0)
 
 
+@pytest.mark.parametrize("integrator", ["event-driven", "compliant"])
 @pytest.mark.parametrize("degrees, mu", [(10.0, 0.5), (60.0, 0.05), (30.0, 0.2)])
-def test_a_spinning_ball_on_a_rough_floor_meets_the_closed_form(degrees, mu):
+def test_a_spinning_ball_on_a_rough_floor_meets_the_closed_form(degrees, mu, integrator):
     """A solid ball (x, y, angle) strikes a rough floor at incidence theta with top spin, the
     floor's tangent row T = (1, 0, R) giving the slip s = v_x + R w. P_n = (1 + e) m V cos(theta);
     the ball leaves rolling (s+ = 0, v_x+ = v_x - 2/7 s-) unless its slip outlasts the impact,
     |s-| >= 7/2 mu (1 + e) V cos(theta), where v_x drops by mu (1 + e) V cos(theta)
-    (docs/model.md, section 16)."""
+    (docs/model.md, section 16): the LZB impact of the event-driven scheme, and the compliant
+    contact, rigid across (its ContactForceHistory gives the tangential impulse and the slip's
+    work)."""
     mass, radius, speed, spin, e = 0.17, 0.0286, 2.0, 20.0, 0.6
     inertia = 0.4 * mass * radius**2
     theta = math.radians(degrees)
@@ -137,12 +140,16 @@ def test_a_spinning_ball_on_a_rough_floor_meets_the_closed_form(degrees, mu):
     system = mimpact.NonSmoothDynamicalSystem()
     system.add(ball)
     system.add(mimpact.Interaction(ball, floor, law, "floor"))
-    simulation = mimpact.Simulation(system, integrator="event-driven",
-                                    impact_options={"integrator": "adaptive", "tolerance": 1e-12})
+    if integrator == "compliant":
+        simulation = mimpact.Simulation(system, integrator="compliant", integrator_options={
+            "relative_tolerance": 1e-12, "absolute_tolerance": 1e-16})
+    else:
+        simulation = mimpact.Simulation(system, integrator="event-driven", impact_options={
+            "integrator": "adaptive", "tolerance": 1e-12})
+        assert simulation.contact_force_history is None
     impacts = []
     simulation.add_observer(on_impact=lambda state, impact: impacts.append(impact))
     simulation.run(0.0, 1e-3)
-    assert len(impacts) == 1
     after = ball.velocity
     normal, slip = speed * math.cos(theta), v[0] + radius * spin
     drop = mu * (1 + e) * normal
@@ -152,9 +159,25 @@ def test_a_spinning_ball_on_a_rough_floor_meets_the_closed_form(degrees, mu):
         expected_vx, expected_slip = v[0] - slip / 3.5, 0.0
     assert after[1] == pytest.approx(e * normal, abs=1e-9 * speed)
     assert after[0] == pytest.approx(expected_vx, abs=1e-9 * speed)
-    assert impacts[0].slip_after[0] == pytest.approx(expected_slip, abs=1e-9 * speed)
     assert after[0] + radius * after[2] == pytest.approx(expected_slip, abs=1e-9 * speed)
+    if integrator == "compliant":
+        history = simulation.contact_force_history
+        assert history.impulse[0] == pytest.approx(mass * (1 + e) * normal, rel=1e-9)
+        assert history.tangential_impulse[0, 0] == pytest.approx(mass * (after[0] - v[0]),
+                                                                 abs=1e-9 * mass * speed)
+        slip_work, loss = history.slip_work[0], ball_energy(mass, inertia, v) - ball_energy(
+            mass, inertia, after)
+        assert slip_work > 0.0
+        assert loss == pytest.approx(history.work[0] + slip_work - history.stored_energy[0],
+                                     rel=1e-9)
+        return
+    assert len(impacts) == 1
+    assert impacts[0].slip_after[0] == pytest.approx(expected_slip, abs=1e-9 * speed)
     assert impacts[0].slip_work[0] > 0.0
+
+
+def ball_energy(mass, inertia, v):
+    return 0.5 * mass * (v[0] ** 2 + v[1] ** 2) + 0.5 * inertia * v[2] ** 2
 
 
 def test_friction_on_a_relation_without_tangents_is_refused():
