@@ -92,26 +92,17 @@ void Friction::choose_modes() {
   }
   const State& y = impact_.segment.y;  // the segment's start
   normal_forces(y, true);
-  while (true) {
-    factor_stick();
-    slips(y);
-    rates();
-    const Member* worst = nullptr;
-    double worst_excess = 0.0;
-    for (const Member& f : members_) {
-      const coulomb::Phase& phase = contacts_[std::size_t(f.contact)].phase;
-      if (phase.mode != Mode::stick) continue;
-      const double excess = phase.excess(&scratch_.rates[f.slot], f.rows,
-                                         mu_[std::size_t(f.contact)] * scratch_.forces[f.active]);
-      if (excess > worst_excess) {
-        worst = &f;
-        worst_excess = excess;
-      }
-    }
-    if (!worst) break;
-    contacts_[std::size_t(worst->contact)].phase.slip_against(&scratch_.rates[worst->slot],
-                                                              worst->rows);
-  }
+  coulomb::settle_sticks(
+      [&] {
+        factor_stick();
+        slips(y);
+        rates();
+      },
+      [&](auto&& visit) {
+        for (const Member& f : members_)
+          visit(contacts_[std::size_t(f.contact)].phase, &scratch_.rates[f.slot], f.rows,
+                mu_[std::size_t(f.contact)] * scratch_.forces[f.active]);
+      });
 }
 
 void Friction::factor_stick() {

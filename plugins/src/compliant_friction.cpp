@@ -118,25 +118,18 @@ void CompliantIntegrator::restart_friction() {
     rub.accounted_impulse = {0.0, 0.0};
     rub.accounted_slip = {slip[0], slip[1]};
   }
-  while (true) {
-    factor_stick();
-    evaluate(time_, s.y.data(), f.dydt.data());
-    Rub* worst = nullptr;
-    double worst_excess = 0.0;
-    for (Index j : f.rubbing) {
-      Rub& rub = s.contact(j).rub;
-      if (rub.phase.mode != Mode::stick) continue;
-      const double normal = f.dydt[std::size_t(2 * s.motion.coordinates + s.contact(j).slot)];
-      const double excess =
-          rub.phase.excess(&f.dydt[std::size_t(rub.slot)], rub.rows, rub.mu * normal);
-      if (excess > worst_excess) {
-        worst = &rub;
-        worst_excess = excess;
-      }
-    }
-    if (!worst) break;
-    worst->phase.slip_against(&f.dydt[std::size_t(worst->slot)], worst->rows);
-  }
+  numerics::coulomb::settle_sticks(
+      [&] {
+        factor_stick();
+        evaluate(time_, s.y.data(), f.dydt.data());
+      },
+      [&](auto&& visit) {
+        for (Index j : f.rubbing) {
+          Rub& rub = s.contact(j).rub;
+          const double normal = f.dydt[std::size_t(2 * s.motion.coordinates + s.contact(j).slot)];
+          visit(rub.phase, &f.dydt[std::size_t(rub.slot)], rub.rows, rub.mu * normal);
+        }
+      });
 }
 
 // H_tt on the sticking rows, W_t^T M^-1 W_t over the bodies two rows share, factorized.

@@ -50,4 +50,32 @@ struct Phase {
   }
 };
 
+// The active-set rule where a segment starts (Stronge 2000: a slip that stops sticks or
+// reverses): `refresh()` finds every contact's forces for the phases as they are, and
+// `each(visit)` calls visit(phase, force, rows, limit) for every rubbing contact, its force
+// (f_t, rows values) and its cone's radius; while some sticking contact's force lies beyond its
+// cone, the one furthest beyond slips against its force and the forces are found again.
+template <class Refresh, class Each>
+void settle_sticks(Refresh&& refresh, Each&& each) {
+  while (true) {
+    refresh();
+    Phase* worst = nullptr;
+    const double* worst_force = nullptr;
+    int worst_rows = 0;
+    double worst_excess = 0.0;
+    each([&](Phase& phase, const double* force, int rows, double limit) {
+      if (phase.mode != Phase::Mode::stick) return;
+      const double excess = phase.excess(force, rows, limit);
+      if (excess > worst_excess) {
+        worst = &phase;
+        worst_force = force;
+        worst_rows = rows;
+        worst_excess = excess;
+      }
+    });
+    if (!worst) return;
+    worst->slip_against(worst_force, worst_rows);
+  }
+}
+
 }  // namespace mimpact::numerics::coulomb
