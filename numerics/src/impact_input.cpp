@@ -138,6 +138,11 @@ void checked_friction(std::span<const ContactLaw> laws, const TangentialRows* ro
     check_tangential_blocks(*rows, m);
   }
   for (Index j = 0; j < m; ++j) {
+    if (const double ratio = laws[std::size_t(j)].tangential_stiffness_ratio; ratio != 0.0)
+      throw InvalidInput(invalid_value_message(
+          "contact " + std::to_string(j) + "'s tangential_stiffness_ratio", ratio,
+          "0 in the LZB impact, whose tangential response is rigid (Coulomb's law alone); the "
+          "compliant integrator takes a Mindlin spring"));
     const double mu = laws[std::size_t(j)].friction;
     if (mu == 0.0) continue;
     const std::string field = "contact " + std::to_string(j) + "'s friction";

@@ -8,7 +8,7 @@
 #include "mimpact/plugins/compliant_integrator.hpp"
 
 // Coulomb's law on the compliant contacts that rub, with a rigid tangential response
-// (docs/model.md, "Friction"): a joined contact with friction mu > 0 carries its tangential
+// (docs/friction.md, section 2): a joined contact with friction mu > 0 carries its tangential
 // impulse P_t (one row in the plane, two in space) in the integrated state, with
 // dP_t/dt = f_t its numerics::coulomb::Phase gives from its normal force f_n = dP_n/dt and its
 // slip s = W_t^T v: -mu f_n d while it slips, and while it sticks the force that keeps ds/dt = 0,
@@ -16,6 +16,9 @@
 // on the sticking rows S together. Its switches are located events that restart the
 // integration, so that no step crosses one. With W and W_t constant this is the adaptive LZB
 // impact's ODE with time for its variable: in the frozen configuration at e = 1 the two meet.
+// A contact whose law has a tangential stiffness (lambda > 0) carries a Mindlin spring instead
+// (numerics::mindlin::Spring): its stretch follows it in the integrated state after the
+// tangential impulses, its force is explicit, and its switches are located events too.
 namespace mimpact::plugins {
 
 using compliant::Body;
@@ -42,6 +45,15 @@ double row_slip(const compliant::State& s, const std::vector<JacobianEntry>& row
 
 }  // namespace
 
+numerics::mindlin::Terms CompliantIntegrator::spring_terms(Index j, double t,
+                                                           const double* y) const {
+  const Contact& c = state_->contact(j);
+  double gap, rate;
+  compliant::linear_gap(*state_, c, t, y, gap, rate);
+  return numerics::mindlin::terms(c.rub.spring_ratio, laws_[std::size_t(j)].exponent, c.rub.mu,
+                                  contact_force(std::size_t(j), -gap), -gap, -rate);
+}
+
 int CompliantIntegrator::coulomb_switch(int kind) {
   return kind >= kCoulombSwitch ? kind - kCoulombSwitch : -1;
 }
@@ -65,6 +77,13 @@ void CompliantIntegrator::prepare_friction() {
     Rub& rub = s.contact(j).rub;
     rub.rows = rows;
     rub.mu = mu;
+    rub.spring_ratio = laws_[std::size_t(j)].tangential_stiffness_ratio;
+    if (rub.spring_ratio > 0.0 && laws_[std::size_t(j)].restitution != 1.0)
+      throw InvalidInput(invalid_value_message(
+          "tangential_stiffness_ratio", rub.spring_ratio,
+          "0 for a contact of restitution " + to_text(laws_[std::size_t(j)].restitution) + " ('" +
+              system_->interaction(j).name() +
+              "'): the Mindlin spring is integrated for elastic contacts, e = 1"));
     for (int k = 0; k < rows; ++k)
       for (Eigen::SparseMatrix<double>::InnerIterator it(tangents, first_row[std::size_t(j)] + k);
            it; ++it) {
@@ -105,7 +124,13 @@ void CompliantIntegrator::restart_friction() {
     }
   f.segment_start = time_;
   if (f.rubbing.empty()) return;
-  s.y.resize(s.y.size() + std::size_t(f.slots), 0.0);
+  Index stretches = 0;
+  for (Index j : f.rubbing)
+    if (Rub& rub = s.contact(j).rub; rub.spring_ratio > 0.0) {
+      rub.stretch_slot = f.first_slot + f.slots + stretches;
+      stretches += rub.rows;
+    }
+  s.y.resize(s.y.size() + std::size_t(f.slots + stretches), 0.0);
   f.slip.assign(std::size_t(f.slots), 0.0);
   f.force = f.slip;
   f.dydt.resize(s.y.size());
@@ -114,7 +139,12 @@ void CompliantIntegrator::restart_friction() {
     double slip[2] = {0.0, 0.0};
     for (int k = 0; k < rub.rows; ++k)
       slip[k] = row_slip(s, rub.tangents[std::size_t(k)], s.y.data());
-    if (rub.phase.mode == Mode::choose) rub.phase.start(slip, rub.rows, f.slip_tolerance);
+    if (rub.spring_ratio > 0.0) {
+      rub.spring.start(rub.stretch.data(), slip, rub.rows, spring_terms(j, time_, s.y.data()));
+      std::copy_n(rub.stretch.begin(), rub.rows, s.y.begin() + rub.stretch_slot);
+    } else if (rub.phase.mode == Mode::choose) {
+      rub.phase.start(slip, rub.rows, f.slip_tolerance);
+    }
     rub.accounted_impulse = {0.0, 0.0};
     rub.accounted_slip = {slip[0], slip[1]};
   }
@@ -163,7 +193,7 @@ void CompliantIntegrator::factor_stick() {
   f.stick_force.resize(n);
 }
 
-void CompliantIntegrator::add_slip_forces(const double* y, double* dydt) {
+void CompliantIntegrator::add_tangential_forces(double t, const double* y, double* dydt) {
   State& s = *state_;
   State::Friction& f = s.friction;
   const Index n = s.motion.coordinates;
@@ -176,8 +206,14 @@ void CompliantIntegrator::add_slip_forces(const double* y, double* dydt) {
       slip[k] = row_slip(s, rub.tangents[std::size_t(k)], y);
       force[k] = 0.0;
     }
-    if (rub.phase.mode != Mode::slip) continue;
-    rub.phase.slip_force(rub.mu * dydt[2 * n + c.slot], slip, rub.rows, force);
+    if (rub.spring_ratio > 0.0) {
+      rub.spring.rates(y + rub.stretch_slot, slip, rub.rows, spring_terms(j, t, y), force,
+                       dydt + rub.stretch_slot);
+    } else if (rub.phase.mode == Mode::slip) {
+      rub.phase.slip_force(rub.mu * dydt[2 * n + c.slot], slip, rub.rows, force);
+    } else {
+      continue;
+    }
     for (int k = 0; k < rub.rows; ++k)
       for (const JacobianEntry& entry : rub.tangents[std::size_t(k)])
         s.scratch.generalized(s.body(entry.body).slot + entry.local) += entry.value * force[k];
@@ -228,6 +264,13 @@ void CompliantIntegrator::watch_friction(double t, std::vector<double>& values) 
   for (std::size_t r = 0; r < f.rubbing.size(); ++r) {
     const Contact& c = s.contact(f.rubbing[r]);
     const std::size_t slot = std::size_t(c.rub.slot - f.first_slot);
+    if (c.rub.spring_ratio > 0.0) {
+      values[2 * r] =
+          c.rub.spring.watched(&s.probe[std::size_t(c.rub.stretch_slot)], &f.slip[slot], c.rub.rows,
+                               spring_terms(f.rubbing[r], t, s.probe.data()));
+      values[2 * r + 1] = 1.0;
+      continue;
+    }
     const double normal = f.dydt[std::size_t(2 * s.motion.coordinates + c.slot)];
     const std::array<double, 2> q = c.rub.phase.watched(
         c.rub.mu * normal, &f.slip[slot], &f.force[slot], c.rub.rows, f.slip_tolerance);
@@ -255,8 +298,16 @@ void CompliantIntegrator::locate_switches(double t0, double t1, const std::vecto
     }
 }
 
+// Before the commit: a spring that sticks again is put on its cap in y.
 void CompliantIntegrator::pass_switch(const Event& event) {
-  numerics::coulomb::Phase& phase = state_->contact(event.contact).rub.phase;
+  State& s = *state_;
+  Contact& c = s.contact(event.contact);
+  if (c.rub.spring_ratio > 0.0) {
+    c.rub.spring.pass(&s.y[std::size_t(c.rub.stretch_slot)], c.rub.rows,
+                      spring_terms(event.contact, time_, s.y.data()));
+    return;
+  }
+  numerics::coulomb::Phase& phase = c.rub.phase;
   phase.pass(event.coulomb == 0 && phase.mode == Mode::stick);
 }
 
@@ -267,6 +318,8 @@ void CompliantIntegrator::commit_friction() {
     for (int k = 0; k < rub.rows; ++k) {
       rub.impulse[std::size_t(k)] += s.y[std::size_t(rub.slot + k)];
       history_.tangential_impulse(j, k) = rub.impulse[std::size_t(k)];
+      if (rub.spring_ratio > 0.0)
+        rub.stretch[std::size_t(k)] = s.y[std::size_t(rub.stretch_slot + k)];
     }
   }
 }

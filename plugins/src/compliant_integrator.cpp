@@ -360,8 +360,8 @@ void CompliantIntegrator::end_segment(double end) {
 bool CompliantIntegrator::handle_event(const Event& event, kernel::StepReport& report) {
   State& s = *state_;
   if (event.coulomb >= 0) {  // the contact's phase switches: the integration restarts there
-    commit_motion();
     pass_switch(event);
+    commit_motion();
     restart();
     return false;
   }

@@ -51,7 +51,7 @@ void CompliantIntegrator::evaluate(double t, const double* y, double* dydt) {
     }
   }
   const bool rubbing = !s.friction.rubbing.empty();
-  if (rubbing) add_slip_forces(y, dydt);
+  if (rubbing) add_tangential_forces(t, y, dydt);
   for (Index k : s.motion.moving) {
     Body& b = s.body(k);
     b.q = s.anchor_q.segment(b.offset, b.size) + Eigen::Map<const VectorXd>(y + b.slot, b.size);
@@ -145,7 +145,10 @@ void CompliantIntegrator::join(Index j) {
 void CompliantIntegrator::leave(Index j) {
   State& s = *state_;
   s.contact(j).joined = false;
-  s.contact(j).rub.phase = {};  // chosen again if it joins again
+  compliant::Rub& rub = s.contact(j).rub;  // its phase chosen again if it joins again, its
+  rub.phase = {};                          // spring born again
+  rub.spring = {};
+  rub.stretch = {0.0, 0.0};
   std::erase(s.motion.joined, j);
   max_compression_[std::size_t(j)] = 0.0;  // the contact forgets
   history_.force(j) = 0.0;

@@ -19,6 +19,7 @@
 
 #include "mimpact/numerics/contact_events.hpp"
 #include "mimpact/numerics/coulomb_phase.hpp"
+#include "mimpact/numerics/mindlin_spring.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 #include "mimpact/plugins/internal/mass_block.hpp"
 
@@ -53,14 +54,19 @@ struct JacobianEntry {
   double value = 0.0;
 };
 
-// A contact's Coulomb friction with a rigid tangential response: its tangent rows W_t (constant:
-// linear relations) and its phase (numerics::coulomb::Phase), with time carrying it.
+// A contact's Coulomb friction: its tangent rows W_t (constant: linear relations), and either a
+// rigid tangential response, its phase (numerics::coulomb::Phase) with time carrying it, or a
+// Mindlin spring (numerics::mindlin::Spring) whose stretch is part of the integrated state.
 struct Rub {
   int rows = 0;  // 0: frictionless
   double mu = 0.0;
+  double spring_ratio = 0.0;  // lambda of its law: k_t / (dF/d delta); 0: rigid
   std::array<std::vector<JacobianEntry>, 2> tangents;
   numerics::coulomb::Phase phase;
+  numerics::mindlin::Spring spring;
+  std::array<double, 2> stretch{};  // m, the spring's, until the last commit
   Index slot = -1;  // of its first row's tangential impulse in the integrated state, while joined
+  Index stretch_slot = -1;          // of its spring's stretch, after every tangential impulse
   std::array<double, 2> impulse{};  // N s along its rows, until the last commit
   // where its slip work was last accounted: the impulses since the last restart (N s), s (m/s)
   std::array<double, 2> accounted_impulse{}, accounted_slip{};
@@ -141,8 +147,9 @@ struct State {
     double accounted_time = 0.0;
   };
   // The joined contacts that rub, their tangential impulses in y from `first_slot` on (after the
-  // normal impulses), and the workspace of their forces: per slot s (m/s) and the tangential
-  // force (N); the sticking slots and their block of H_tt = W_t^T M^-1 W_t, factorized.
+  // normal impulses) and then their springs' stretches, and the workspace of their forces: per slot
+  // s (m/s) and the tangential force (N); the sticking slots and their block of H_tt = W_t^T M^-1
+  // W_t, factorized.
   struct Friction {
     bool on = false;              // some contact has friction
     double slip_tolerance = 0.0;  // m/s

@@ -25,10 +25,17 @@ LzbImpactProblem::LzbImpactProblem(LzbImpactOptions options)
     : options_(checked(std::move(options))), integrator_(make_impact_integrator(options_)) {}
 
 void LzbImpactProblem::check_law(const kernel::NonSmoothLaw& law, const std::string& which) const {
-  if (!dynamic_cast<const LzbLaw*>(&law))
+  const auto* lzb = dynamic_cast<const LzbLaw*>(&law);
+  if (!lzb)
     throw InvalidInput("interaction '" + which + "' has a \"" + std::string(law.kind()) +
                        "\" law, which the \"lzb\" impact problem cannot handle; allowed: "
                        "plugins::LzbLaw");
+  if (const double ratio = lzb->contact_law().tangential_stiffness_ratio; ratio != 0.0)
+    throw InvalidInput(invalid_value_message(
+        "tangential_stiffness_ratio", ratio,
+        "0 in the LZB impact (interaction '" + which +
+            "'), whose tangential response is rigid (Coulomb's law alone); the compliant "
+            "integrator takes a Mindlin spring"));
 }
 
 namespace {

@@ -19,7 +19,7 @@ def run_example(name, *arguments):
 
 def test_every_example_is_tested():
     tested = {"bouncing_ball.py", "bead_column.py", "taper_sweep.py", "calibrate_restitution.py",
-              "coste_speed_law.py", "billiard_break.py"}
+              "coste_speed_law.py", "billiard_break.py", "oblique_impact.py"}
     assert {path.name for path in EXAMPLES.glob("*.py")} <= tested
 
 
@@ -66,3 +66,20 @@ def test_billiard_break_turns_the_balls_and_keeps_momentum(tmp_path):
     low, high = (float(x) for x in lines[3].split("spins from")[1].split("rad/s")[0].split("to"))
     assert low < -10 and high > 5
     assert (tmp_path / "billiard_break.png").stat().st_size > 10_000
+
+
+def test_oblique_impact_draws_maw_barber_fawcetts_curve(tmp_path):
+    """Issue 46: an elastic sphere's oblique impact through Hertz + Mindlin + Coulomb meets
+    LAMMPS's runs to 1e-10 m/s, its contact point turns back over a range of incidences (psi_2 >
+    0, Maw, Barber & Fawcett's reversal) where the rigid response rolls, and in gross slip it
+    leaves on the closed form's line."""
+    lines = run_example("oblique_impact.py", "--out", str(tmp_path)).splitlines()
+    reversal, gross, normal, lammps = lines[:4]
+    start, end = (float(x) for x in reversal.split("from")[1].split(",")[0].split("to"))
+    assert 1.0 < start < 2.0 and 5.0 < end < 6.0
+    assert float(reversal.split("highest")[1].split()[0]) > 1.0
+    assert float(reversal.split("smallest incidence")[1]) < -0.5  # forward at small angles
+    assert float(gross.split("worst")[1].split()[0]) < 1e-9
+    assert float(normal.split("|e_n - 1|")[1]) < 1e-9
+    assert float(lammps.split("worst")[1].split()[0]) < 1e-10
+    assert (tmp_path / "maw_barber_fawcett.png").stat().st_size > 10_000

@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "../support/planar_frictional_impact.hpp"
+#include "../support/stop_when_a_contact_opens.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
 #include "mimpact/kernel/linear_relation.hpp"
@@ -59,13 +60,7 @@ Outcome strike(const Strike& s) {
                                                Eigen::MatrixXd(s.tangent)),
       std::make_shared<LzbLaw>(s.law), "floor"));
   kernel::Simulation simulation(system, std::make_unique<CompliantIntegrator>(tight()));
-  struct Opening : kernel::SimulationObserver {
-    kernel::EventStatus on_step(const kernel::Simulation&,
-                                const kernel::StepReport& step) override {
-      return step.detaching.empty() ? kernel::EventStatus::proceed()
-                                    : kernel::EventStatus::terminate("the contact has opened");
-    }
-  } opening;
+  testing::StopWhenAContactOpens opening;
   simulation.add_observer(opening);
   simulation.run(0.0, 1.0);
   const kernel::ContactForceHistory& history = *simulation.integrator().contact_force_history();

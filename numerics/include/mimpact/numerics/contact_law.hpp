@@ -32,6 +32,11 @@ struct ContactLaw {
   // kernel, a relation with tangent rows); 0: frictionless. Read by the integrators that
   // integrate friction (ImpactIntegrator::integrates_friction).
   double friction = 0.0;
+  // lambda >= 0, a contact with friction's tangential stiffness over its normal one,
+  // k_t = lambda dF/d delta: a Mindlin spring (numerics::mindlin::Spring; for Hertz, lambda =
+  // 4 G*/E*, 2 (1 - nu) / (2 - nu) for one material, gives k_t = 8 G* a). 0: a rigid tangential
+  // response, Coulomb's law alone, as the LZB impact has it. Read by the compliant integrator.
+  double tangential_stiffness_ratio = 0.0;
 
   bool operator==(const ContactLaw&) const = default;
 
@@ -44,6 +49,8 @@ struct ContactLaw {
     field("model", self.model);
     field("friction", self.friction,
           at_least(0.0, "Coulomb's coefficient; 0 frictionless").with_symbol("mu"));
+    field("tangential_stiffness_ratio", self.tangential_stiffness_ratio,
+          at_least(0.0, "k_t / (dF/d delta); 0 rigid tangentially").with_symbol("lambda"));
   }
 
   // Below this restitution the energy a contact gives back, e^2 of its compression work, is

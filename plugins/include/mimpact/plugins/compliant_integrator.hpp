@@ -11,6 +11,7 @@
 #include "mimpact/kernel/one_step_integrator.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 #include "mimpact/numerics/event_scan.hpp"
+#include "mimpact/numerics/mindlin_spring.hpp"
 #include "mimpact/numerics/ode_options.hpp"
 
 namespace mimpact::plugins {
@@ -67,8 +68,9 @@ struct CompliantOptions {
 // overlap lies below what the error control resolves, and integrating it only fed those errors and
 // kept ever more bodies in motion. With a nonlinear relation every body and contact is integrated.
 // A contact with friction (its law's mu > 0, its linear relation's tangent rows) follows
-// Coulomb's law with a rigid tangential response (compliant_friction.cpp; docs/model.md,
-// section 16) and is always integrated, never collided instantly.
+// Coulomb's law with a rigid tangential response, or with its law's tangential stiffness ratio
+// > 0 through a Mindlin spring (compliant_friction.cpp; docs/friction.md, sections 2 and 3), and
+// is always integrated, never collided instantly.
 // It solves no impact problem: every contact is compliant. Registered as "compliant".
 namespace compliant {
 struct State;  // the integration's state and its bodies and contacts (src/compliant_state.hpp)
@@ -148,18 +150,21 @@ class CompliantIntegrator : public kernel::OneStepIntegrator {
 
   // Coulomb's law on the contacts that rub (compliant_friction.cpp): each contact's tangent rows
   // and mu; at a restart, the rubbing contacts' impulses appended to y and their phases chosen;
-  // the forces of the slipping rows (onto the generalized force, before M^-1) and of the
-  // sticking rows (onto the accelerations, after it) with every row's dP_t/dt; the switches watched
-  // and located along the step, and passed; the impulses committed; the slip's work accounted at t
+  // the forces of the slipping rows and springs (onto the generalized force, before M^-1, with
+  // the springs' stretch rates) and of the sticking rows (onto the accelerations, after it) with
+  // every row's dP_t/dt; the switches watched and located along the step, and passed (before
+  // the commit); the impulses and stretches committed; the tangential forces' work accounted at t
   void prepare_friction();
   void restart_friction();
-  void add_slip_forces(const double* y, double* dydt);
+  void add_tangential_forces(double t, const double* y, double* dydt);
   void tangential_rates(double* dydt);
   void factor_stick();
   void watch_friction(double t, std::vector<double>& values);
   void locate_switches(double t0, double t1, const std::vector<double>& before,
                        const std::vector<double>& after, std::vector<numerics::Crossing>& found);
   void pass_switch(const Event& event);
+  // the spring of contact j at time t with the integrated state y
+  numerics::mindlin::Terms spring_terms(kernel::Index j, double t, const double* y) const;
   // the watched value whose crossing a Crossing's kind says (locate_switches), -1 for a contact's
   static int coulomb_switch(int kind);
   void commit_friction();
