@@ -102,6 +102,16 @@ double NonSmoothDynamicalSystem::jacobian_rate(Index j, const VectorXd& q,
   return interactions_[j]->relation().jacobian_rate(work.q, work.v);
 }
 
+void NonSmoothDynamicalSystem::tangent_rates(Index j, const VectorXd& q, const VectorXd& v,
+                                             VectorXd& rates) const {
+  Workspace& work = workspaces_[std::size_t(j)];
+  stack(j, q, work.q);
+  stack(j, v, work.v);
+  const Relation& relation = interactions_[std::size_t(j)]->relation();
+  rates.resize(relation.tangent_rows());
+  relation.tangent_rates(work.q, work.v, rates);
+}
+
 Eigen::SparseMatrix<double> NonSmoothDynamicalSystem::jacobian_matrix(std::span<const Index> subset,
                                                                       const VectorXd& q) const {
   std::vector<Eigen::Triplet<double>> entries;

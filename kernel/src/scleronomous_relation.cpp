@@ -13,13 +13,14 @@ ScleronomousRelation::ScleronomousRelation(Gap gap, Jacobian jacobian, Rate rate
     throw InvalidInput("a scleronomous relation needs both a gap and a Jacobian function");
 }
 
-void ScleronomousRelation::set_tangents(int rows, Tangents tangents) {
+void ScleronomousRelation::set_tangents(int rows, Tangents tangents, TangentRates rates) {
   if (rows != 1 && rows != 2)
     throw InvalidInput(invalid_value_message("a relation's tangent rows", double(rows),
                                              "1 (a tangent in the plane) or 2 (in space)"));
   if (!tangents) throw InvalidInput("a relation's tangent rows need a function that gives them");
   tangent_rows_ = rows;
   tangents_ = std::move(tangents);
+  tangent_rates_ = std::move(rates);
 }
 
 double ScleronomousRelation::jacobian_rate(const VectorXd& q, const VectorXd& v) const {

@@ -1,10 +1,7 @@
 #include "mimpact/plugins/acceleration_lcp_problem.hpp"
 
-#include <limits>
-
 #include "contact_dynamics.hpp"
 #include "mimpact/common/error.hpp"
-#include "mimpact/plugins/lzb_law.hpp"
 
 namespace mimpact::plugins {
 
@@ -13,36 +10,6 @@ AccelerationLcpProblem::AccelerationLcpProblem(numerics::LemkeOptions options) :
 }
 
 AccelerationLcpProblem::~AccelerationLcpProblem() = default;
-
-namespace {
-
-// A contact held closed with a force while its points slip needs Coulomb's law in the smooth
-// motion, which the acceleration-level problem does not have yet: an error naming the contact,
-// rather than a frictionless slide. A contact that rubs without slipping (at rest, rolling) or
-// without force is what a frictionless contact does.
-void refuse_sliding_with_friction(const kernel::NonSmoothDynamicalSystem& system,
-                                  std::span<const Index> persistent, const VectorXd& force,
-                                  double time, const VectorXd& q, const VectorXd& v) {
-  const double resolution = 1e-9 * v.cwiseAbs().maxCoeff();  // m/s
-  for (std::size_t k = 0; k < persistent.size(); ++k) {
-    const kernel::Interaction& contact = system.interaction(persistent[k]);
-    const auto* law = dynamic_cast<const LzbLaw*>(&contact.law());
-    const double mu = law ? law->contact_law().friction : 0.0;
-    if (!(mu > 0.0) || !(force(Index(k)) > 0.0) || contact.relation().tangent_rows() == 0) continue;
-    std::vector<Index> first_row;
-    const Index one[] = {persistent[k]};
-    const double slip = (system.tangent_matrix(one, q, first_row).transpose() * v).norm();
-    if (slip > resolution)
-      throw Error("interaction '" + contact.name() + "' (friction = " + to_text(mu) +
-                  ") slides at " + to_text(slip) + " m/s while held closed by " +
-                  to_text(force(Index(k))) + " N at t = " + to_text(time) +
-                  " s: the event-driven scheme holds a contact with friction only while it does "
-                  "not slip (Coulomb's law in the acceleration-level problem is not there yet); "
-                  "the compliant integrator rubs it");
-  }
-}
-
-}  // namespace
 
 kernel::ContactForces AccelerationLcpProblem::solve(const kernel::NonSmoothDynamicalSystem& system,
                                                     std::span<const Index> persistent, double time,
@@ -69,7 +36,6 @@ kernel::ContactForces AccelerationLcpProblem::solve(const kernel::NonSmoothDynam
   forces.force = result.z;
   forces.acceleration = result.w;
   forces.solved = result.solved();
-  if (forces.solved) refuse_sliding_with_friction(system, persistent, forces.force, time, q, v);
   if (!forces.solved)
     forces.message =
         "Lemke: " + std::string(numerics::to_string(result.status)) + ": " + result.message;

@@ -5,7 +5,7 @@
 #include <limits>
 #include <optional>
 
-#include "contact_dynamics.hpp"
+#include "event_driven_motion.hpp"
 #include "mimpact/common/error.hpp"
 #include "mimpact/numerics/dense_output.hpp"
 #include "mimpact/numerics/event_scan.hpp"
@@ -14,25 +14,6 @@
 namespace mimpact::plugins {
 
 using numerics::Crossing;
-
-// What the event search watches at one time: every contact's gap (m) and normal velocity
-// (m/s), and the force holding each persistent contact (N).
-struct EventDrivenIntegrator::Watched {
-  VectorXd gaps, rates, forces;
-};
-
-// The smooth motion: the contact dynamics with the persistent contacts held, its integration
-// (Dormand-Prince 5(4) with dense output, on y = (q, v); only once some force acts), and the
-// event search's workspace.
-struct EventDrivenIntegrator::Motion {
-  ContactDynamics dynamics;
-  std::optional<numerics::DenseOutput> dense;
-  numerics::DenseOutput::State y, probe;
-  VectorXd q, v, a;  // right-hand side workspace
-  VectorXd q_probe, v_probe;
-  Watched before, after;
-  VectorXd levels;  // the gap at which each contact counts as closing, in a search
-};
 
 EventDrivenIntegrator::EventDrivenIntegrator(EventDrivenOptions options) : options_(options) {
   validate(options_, "event-driven integrator");
@@ -51,8 +32,9 @@ void EventDrivenIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system,
   system.gather_state(q_, v_);
   motion_ = std::make_unique<Motion>();
   motion_->dynamics.initialize(system);
+  motion_->friction.initialize(system, options_.velocity_tolerance);
   const Index m = system.interaction_count();
-  for (Watched* watched : {&motion_->before, &motion_->after}) {
+  for (Watched* watched : {&motion_->before, &motion_->after, &motion_->probed}) {
     watched->gaps.setZero(m);
     watched->rates.setZero(m);
   }
@@ -81,7 +63,7 @@ kernel::StepReport EventDrivenIntegrator::advance(double target) {
   }
   if (impact_pending_) {  // closed contacts approach now: an impact at this very instant
     impact_pending_ = false;
-    process_event({time_, {}, {}}, report);
+    process_event({time_, {}, {}, {}}, report);
     return report;
   }
   if (target <= time_) return report;
@@ -90,6 +72,10 @@ kernel::StepReport EventDrivenIntegrator::advance(double target) {
     Event event;
     if (search(time_, end, event)) {
       move_to(event.time);
+      if (event.closing.empty() && event.detaching.empty()) {
+        switch_phases(event);
+        continue;
+      }
       process_event(event, report);
       return report;
     }
@@ -125,6 +111,8 @@ void EventDrivenIntegrator::derivative(const std::vector<double>& y, std::vector
   m.dynamics.evaluate(t, m.q, m.v, persistent);
   if (persistent.empty()) {
     m.a = m.dynamics.free_acceleration();
+  } else if (m.friction.rubbing()) {
+    m.friction.accelerate(m.dynamics, m.q, m.v, m.a, m.normal);
   } else {
     m.dynamics.acceleration(m.dynamics.bilateral_force(), m.a);
   }
@@ -173,10 +161,17 @@ void EventDrivenIntegrator::watch(double t, Watched& values) {
   if (persistent.empty()) return;
   if (free_flight_) {  // no force, constant W: nothing presses a persistent contact
     values.forces.setZero(Index(persistent.size()));
+    values.friction.setOnes(0);
     return;
   }
   m.dynamics.evaluate(t, m.q_probe, m.v_probe, persistent);
-  values.forces = m.dynamics.bilateral_force();
+  if (!m.friction.rubbing()) {
+    values.forces = m.dynamics.bilateral_force();
+    values.friction.resize(0);
+    return;
+  }
+  m.friction.accelerate(m.dynamics, m.q_probe, m.v_probe, m.a, values.forces);
+  m.friction.watched(values.friction);
 }
 
 double EventDrivenIntegrator::gap_function(Index j, double t) {
@@ -195,7 +190,26 @@ double EventDrivenIntegrator::force_function(Index k, double t) {
   Motion& m = *motion_;
   state_at(t, m.q_probe, m.v_probe);
   m.dynamics.evaluate(t, m.q_probe, m.v_probe, system_->index_sets().persistent);
-  return m.dynamics.bilateral_force()(k);
+  if (!m.friction.rubbing()) return m.dynamics.bilateral_force()(k);
+  m.friction.accelerate(m.dynamics, m.q_probe, m.v_probe, m.a, m.normal);
+  return m.normal(k);
+}
+
+double EventDrivenIntegrator::friction_function(Index value, double t) {
+  Motion& m = *motion_;
+  watch(t, m.probed);
+  return m.probed.friction(value);
+}
+
+// Past switches of the rubbing contacts' Coulomb phases (a slip stopped, a stick ended): the
+// phases settled there, and the smooth motion restarted.
+void EventDrivenIntegrator::switch_phases(const Event& event) {
+  check_event_loop(time_);
+  Motion& m = *motion_;
+  for (Index value : event.switches) m.friction.pass(std::size_t(value / 2), int(value % 2));
+  m.friction.settle(time_, q_, v_, m.dynamics);
+  m.phases_since = time_;
+  if (m.dense) m.dense->invalidate();
 }
 
 double EventDrivenIntegrator::closing_time(Index j, double t0, double t1, const Watched& before,
@@ -240,7 +254,7 @@ bool EventDrivenIntegrator::search(double a, double b, Event& event) {
   std::vector<char> held(std::size_t(system_->interaction_count()), 0);
   for (Index j : persistent) held[std::size_t(j)] = 1;
   const double tolerance = options_.ode.event_tolerance;
-  enum Kind { closing, detaching };
+  enum Kind { closing, detaching, switching };
   auto watch_at = [this](double t, Watched& values) { watch(t, values); };
   bool levels_set = false;
   auto locate = [&](double t0, double t1, const Watched& before, const Watched& after,
@@ -267,15 +281,24 @@ bool EventDrivenIntegrator::search(double a, double b, Event& event) {
                                     before.forces(k), after.forces(k), tolerance);
       found.push_back({persistent[p], detaching, crossing.upper});
     }
+    for (Index value = 0; value < before.friction.size(); ++value) {
+      const std::optional<double> crossing = numerics::crossing_time(
+          before.friction(value), after.friction(value), t0, t1, m.phases_since,
+          [&](double s) { return friction_function(value, s); });
+      if (crossing) found.push_back({value, switching, *crossing});
+    }
   };
   const std::vector<Crossing> found = numerics::scan_events(
       {.start = a, .end = b, .samples = options_.ode.samples_per_step, .tolerance = tolerance},
       m.before, m.after, watch_at, locate);
   if (found.empty()) return false;
-  event = {found.front().time, {}, {}};
+  event = {found.front().time, {}, {}, {}};
   for (const Crossing& crossing : found) {
     event.time = std::min(event.time, crossing.time);
-    (crossing.kind == detaching ? event.detaching : event.closing).push_back(crossing.index);
+    (crossing.kind == detaching   ? event.detaching
+     : crossing.kind == switching ? event.switches
+                                  : event.closing)
+        .push_back(crossing.index);
   }
   return true;
 }
@@ -327,121 +350,6 @@ void EventDrivenIntegrator::process_event(const Event& event, kernel::StepReport
   if (motion_->dense) motion_->dense->invalidate();
 }
 
-// Algorithm 6 of Nguyen & Brogliato (2011), before the next smooth motion: penetrations are
-// undone, contacts come to rest, and the contact force problem decides which stay closed.
-// A contact sent into a real approach by any of this makes an impact now instead.
-void EventDrivenIntegrator::settle(kernel::StepReport& report) {
-  restore_penetrations();
-  const std::vector<Index> resting = bring_to_rest();
-  if (impact_pending_) {
-    system_->scatter_state(q_, v_);
-    return;
-  }
-  hold_resting(resting, report);
-}
-
-// Events are placed just after a crossing, so closed contacts penetrate a little, and a
-// contact that closes again while already closed sinks deeper each time: the least
-// mass-weighted shift of positions, dq = M^-1 W lambda with H lambda = -g over the
-// penetrating contacts, brings them back to g = 0. Shifting one may press a neighbour in:
-// the set grows until no closed contact penetrates.
-void EventDrivenIntegrator::restore_penetrations() {
-  ContactDynamics& dynamics = motion_->dynamics;
-  std::vector<Index> penetrating;
-  for (std::size_t round = 0; round <= closed_.size(); ++round) {
-    bool added = false;
-    for (Index j : closed_)
-      if (system_->gap(j, q_) < 0.0 &&
-          std::find(penetrating.begin(), penetrating.end(), j) == penetrating.end()) {
-        penetrating.push_back(j);
-        added = true;
-      }
-    if (!added) break;
-    VectorXd g(Index(penetrating.size()));
-    for (std::size_t k = 0; k < penetrating.size(); ++k)
-      g(Index(k)) = system_->gap(penetrating[k], q_);
-    dynamics.evaluate(time_, q_, v_, penetrating);
-    const VectorXd shift = dynamics.solve(-g);
-    dynamics.add_mobility_times(shift, q_);
-  }
-}
-
-// Contacts come to rest when |u| is within what the last impact resolves or their next
-// flight would be too short; the least-energy velocity change then sets their u to 0. That
-// change moves the other closed contacts too, so the classification repeats until nothing
-// changes. Sets impact_pending_ when a closed contact approaches for real.
-std::vector<Index> EventDrivenIntegrator::bring_to_rest() {
-  ContactDynamics& dynamics = motion_->dynamics;
-  std::vector<Index> resting;
-  std::vector<char> rests(std::size_t(system_->interaction_count()), 0);
-  for (std::size_t round = 0; round <= closed_.size(); ++round) {
-    dynamics.evaluate(time_, q_, v_, {});
-    const VectorXd& free_acceleration = dynamics.free_acceleration();
-    bool added = false;
-    for (Index j : closed_) {
-      if (rests[std::size_t(j)]) continue;
-      const double u = system_->velocity(j, q_, v_);
-      // an impact may leave a contact approaching as slowly as its velocity resolution:
-      // that is rest, not a new impact; a separation, however slow, is real unless its
-      // flight would be shorter than rest_flight_time
-      const double resolution = std::max(options_.velocity_tolerance, velocity_resolution_(j));
-      if (u < -resolution) {
-        impact_pending_ = true;
-        return resting;
-      }
-      double b = system_->jacobian_rate(j, q_, v_);
-      system_->for_each_jacobian_entry(j, q_,
-                                       [&](Index i, double w) { b += w * free_acceleration(i); });
-      const double rest_speed = b < 0.0 ? 0.5 * -b * options_.rest_flight_time : 0.0;
-      if (u <= std::max(options_.velocity_tolerance, rest_speed)) {
-        resting.push_back(j);
-        rests[std::size_t(j)] = 1;
-        added = true;
-      }
-    }
-    if (!added) break;
-    VectorXd u(Index(resting.size()));
-    for (std::size_t k = 0; k < resting.size(); ++k)
-      u(Index(k)) = system_->velocity(resting[k], q_, v_);
-    if (u.cwiseAbs().maxCoeff() > 0.0) {
-      dynamics.evaluate(time_, q_, v_, resting);
-      const VectorXd impulse = dynamics.solve(-u);
-      dynamics.add_mobility_times(impulse, v_);
-    }
-  }
-  return resting;
-}
-
-// Which resting contacts stay closed: the acceleration-level problem. They are held in the
-// smooth motion that follows, which is q + v t when no force acts and every held relation is
-// linear.
-void EventDrivenIntegrator::hold_resting(const std::vector<Index>& resting,
-                                         kernel::StepReport& report) {
-  std::vector<Index> persistent;
-  if (!resting.empty()) {
-    kernel::ContactForces forces = forces_->solve(*system_, resting, time_, q_, v_);
-    if (!forces.solved)
-      throw Error("contact forces at t = " + to_text(time_) + " s: " + forces.message);
-    // a contact pulled away more slowly than this would separate less than the velocity
-    // tolerance over a rest flight time: it stays
-    const double acceleration_tolerance =
-        options_.rest_flight_time > 0.0
-            ? 2.0 * options_.velocity_tolerance / options_.rest_flight_time
-            : 0.0;
-    for (std::size_t k = 0; k < resting.size(); ++k)
-      if (forces.force(Index(k)) > 0.0 || forces.acceleration(Index(k)) <= acceleration_tolerance)
-        persistent.push_back(resting[k]);
-    report.contact_forces = std::move(forces);
-  }
-  system_->index_sets().persistent = persistent;
-  system_->scatter_state(q_, v_);
-
-  bool linear = true;
-  for (Index j : persistent) linear = linear && system_->interaction(j).relation().is_linear();
-  free_flight_ = !system_->has_force() && linear;
-  if (motion_->dense) motion_->dense->invalidate();
-}
-
 kernel::ContactForces EventDrivenIntegrator::persistent_forces() {
   kernel::ContactForces forces;
   const std::vector<Index>& persistent = system_->index_sets().persistent;
@@ -450,7 +358,11 @@ kernel::ContactForces EventDrivenIntegrator::persistent_forces() {
   forces.solved = true;
   if (persistent.empty()) return forces;
   motion_->dynamics.evaluate(time_, q_, v_, persistent);
-  forces.force = motion_->dynamics.bilateral_force();
+  if (motion_->friction.rubbing()) {
+    motion_->friction.accelerate(motion_->dynamics, q_, v_, motion_->a, forces.force);
+  } else {
+    forces.force = motion_->dynamics.bilateral_force();
+  }
   forces.acceleration = VectorXd::Zero(forces.force.size());
   return forces;
 }

@@ -21,6 +21,7 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> RockingBlock::build() const {
   numerics::ContactLaw law;
   law.stiffness = stiffness;
   law.restitution = restitution;
+  law.friction = friction;
   const double a = width / 2, b = height / 2;
   for (double side : {-1.0, 1.0}) {
     auto relation = std::make_shared<kernel::ScleronomousRelation>(
@@ -33,6 +34,15 @@ std::shared_ptr<kernel::NonSmoothDynamicalSystem> RockingBlock::build() const {
         [a, b, side](const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
           return v(2) * v(2) * (-side * a * std::sin(q(2)) + b * std::cos(q(2)));
         });
+    if (friction > 0.0)
+      relation->set_tangents(
+          1,
+          [a, b, side](const Eigen::VectorXd& q, Eigen::MatrixXd& rows) {
+            rows << 1.0, 0.0, b * std::cos(q(2)) - side * a * std::sin(q(2));
+          },
+          [a, b, side](const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& rates) {
+            rates(0) = -v(2) * v(2) * (b * std::sin(q(2)) + side * a * std::cos(q(2)));
+          });
     system->add(std::make_shared<kernel::Interaction>(block, relation,
                                                       std::make_shared<plugins::LzbLaw>(law),
                                                       side < 0 ? "corner -w/2" : "corner +w/2"));

@@ -17,6 +17,9 @@ class LinearRelation : public Relation {
   bool is_linear() const override { return true; }
   int tangent_rows() const override { return int(T_.rows()); }
   void tangent_jacobian(const VectorXd&, Eigen::MatrixXd& rows) const override { rows = T_; }
+  void tangent_rates(const VectorXd&, const VectorXd&, VectorXd& rates) const override {
+    rates.setZero();
+  }
 
  private:
   RowVectorXd C_;

@@ -60,6 +60,8 @@ class NonSmoothDynamicalSystem {
   // rows of subset[k] from first_row[k] (subset.size() + 1 offsets, written here).
   Eigen::SparseMatrix<double> tangent_matrix(std::span<const Index> subset, const VectorXd& q,
                                              std::vector<Index>& first_row) const;
+  // (dW_t/dt)^T v of interaction j's tangent rows (Relation::tangent_rates), resized here.
+  void tangent_rates(Index j, const VectorXd& q, const VectorXd& v, VectorXd& rates) const;
   // The block-diagonal global mass matrix at q.
   Eigen::SparseMatrix<double> mass_matrix(const VectorXd& q) const;
 

@@ -32,6 +32,10 @@ class Relation {
     (void)q;
     (void)rows;
   }
+  // (dW_t/dt)^T v per tangent row into `rates` (already tangent_rows() long): the part of the
+  // slip's acceleration that does not depend on q''. By default a central difference of the
+  // tangent rows along v, with a step of sqrt(machine epsilon) relative to q.
+  virtual void tangent_rates(const VectorXd& q, const VectorXd& v, VectorXd& rates) const;
 };
 
 }  // namespace mimpact::kernel

@@ -17,6 +17,8 @@ class ScleronomousRelation : public Relation {
   using Rate = std::function<double(const VectorXd& q, const VectorXd& v)>;
   // writes the tangent rows (tangent_rows() x q.size(), already sized)
   using Tangents = std::function<void(const VectorXd& q, Eigen::MatrixXd& rows)>;
+  // writes (dW_t/dt)^T v per tangent row (already sized)
+  using TangentRates = std::function<void(const VectorXd& q, const VectorXd& v, VectorXd& rates)>;
 
   ScleronomousRelation(Gap gap, Jacobian jacobian, Rate rate = {});
 
@@ -25,11 +27,16 @@ class ScleronomousRelation : public Relation {
   double jacobian_rate(const VectorXd& q, const VectorXd& v) const override;
   bool is_linear() const override { return false; }
   // The contact's tangent directions (Relation::tangent_jacobian): `rows` of them (1 or 2),
-  // given by `tangents`. Throws InvalidInput for another count or an empty callable.
-  void set_tangents(int rows, Tangents tangents);
+  // given by `tangents`, with their rates (Relation::tangent_rates) by `rates` or, without, by a
+  // central difference. Throws InvalidInput for another count or an empty callable.
+  void set_tangents(int rows, Tangents tangents, TangentRates rates = {});
   int tangent_rows() const override { return tangent_rows_; }
   void tangent_jacobian(const VectorXd& q, Eigen::MatrixXd& rows) const override {
     tangents_(q, rows);
+  }
+  void tangent_rates(const VectorXd& q, const VectorXd& v, VectorXd& rates) const override {
+    if (!tangent_rates_) return Relation::tangent_rates(q, v, rates);
+    tangent_rates_(q, v, rates);
   }
 
  private:
@@ -38,6 +45,7 @@ class ScleronomousRelation : public Relation {
   Rate rate_;
   int tangent_rows_ = 0;
   Tangents tangents_;
+  TangentRates tangent_rates_;
   mutable VectorXd shifted_;  // finite-difference workspace
   mutable RowVectorXd ahead_, behind_;
 };

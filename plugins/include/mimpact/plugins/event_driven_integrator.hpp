@@ -45,7 +45,9 @@ struct EventDrivenOptions {
 // Before the next smooth motion (Nguyen & Brogliato's algorithm 6): closed contacts leaving an
 // impact with u about 0, or with a flight shorter than rest_flight_time, come to rest (their u set
 // to 0 by the least-energy velocity change), and the acceleration-level problem decides which
-// resting contacts stay closed. Registered as "event-driven".
+// resting contacts stay closed. A held contact with friction (an LzbLaw's mu > 0, tangent rows)
+// slides under Coulomb's law or sticks within its cone, its switches located as events too
+// (SmoothFriction, src/smooth_friction.hpp). Registered as "event-driven".
 class EventDrivenIntegrator : public kernel::OneStepIntegrator {
  public:
   using Options = EventDrivenOptions;
@@ -74,6 +76,7 @@ class EventDrivenIntegrator : public kernel::OneStepIntegrator {
   struct Event {
     double time;
     std::vector<Index> closing, detaching;
+    std::vector<Index> switches;  // of the Coulomb phases' watched values (SmoothFriction)
   };
 
   // the phases of algorithm 6, before the next smooth motion
@@ -94,6 +97,8 @@ class EventDrivenIntegrator : public kernel::OneStepIntegrator {
   double gap_function(Index j, double t);
   double rate_function(Index j, double t);
   double force_function(Index k, double t);
+  double friction_function(Index value, double t);
+  void switch_phases(const Event& event);
   // when contact j closes between the samples t0 and t1, or infinity; `level` is the gap at
   // which it counts as closing
   double closing_time(Index j, double t0, double t1, const Watched& before, const Watched& after,
