@@ -106,9 +106,11 @@ def hexagonal(rows, columns, a, density, strike, speed):
 
 
 # ---------------------------------------------------------------------------- LAMMPS input
-def lammps_input(bodies, dimension, k, dt, steps, skin, trace=None, damping=0.0):
+def lammps_input(bodies, dimension, k, dt, steps, skin, trace=None, damping=0.0, friction=None):
     """The data file and the input script. `trace` = (i, j, every): print the distance of
-    bodies i and j (0-based) every `every` steps in the thermo output."""
+    bodies i and j (0-based) every `every` steps in the thermo output. `friction` = (mu, kt):
+    Mindlin's tangential spring k_t = kt a under Coulomb's cap mu F_n (`tangential mindlin`,
+    its dashpot off with the normal one's: damping viscoelastic with 0)."""
     n = len(bodies["x"])
     radii = sorted(set(bodies["radius"].tolist()))
     type_of = {r: t + 1 for t, r in enumerate(radii)}
@@ -152,8 +154,11 @@ def lammps_input(bodies, dimension, k, dt, steps, skin, trace=None, damping=0.0)
             if type_of[rj] < type_of[ri]:
                 continue
             r_eff = ri * rj / (ri + rj)
+            tangential = ("tangential linear_nohistory 0.0 0.0" if friction is None else
+                          f"tangential mindlin {fmt(friction[1])} 0.0 {fmt(friction[0])} "
+                          "damping viscoelastic")
             inp.append(f"pair_coeff {type_of[ri]} {type_of[rj]} hertz {fmt(k / math.sqrt(r_eff))} "
-                       f"{fmt(damping)} tangential linear_nohistory 0.0 0.0")
+                       f"{fmt(damping)} {tangential}")
     inp += [f"neighbor {fmt(skin)} bin",
             "neigh_modify delay 0 every 1 check yes",
             "fix integrate all nve/sphere"]
@@ -175,13 +180,13 @@ def lammps_input(bodies, dimension, k, dt, steps, skin, trace=None, damping=0.0)
 
 
 def run_lammps(bodies, dimension, k, dt, end_time, skin=None, trace=None, keep=None,
-               damping=0.0):
+               damping=0.0, friction=None):
     steps = round(end_time / dt)
     if steps < 1 or abs(steps * dt - end_time) > 1e-9 * end_time:
         sys.exit(f"--end-time {end_time} is not a whole number of steps of --dt {dt}")
     if skin is None:
         skin = 0.2 * float(max(bodies["radius"]))
-    data, inp = lammps_input(bodies, dimension, k, dt, steps, skin, trace, damping)
+    data, inp = lammps_input(bodies, dimension, k, dt, steps, skin, trace, damping, friction)
     work = keep or tempfile.mkdtemp(prefix="lammps_packing_")
     os.makedirs(work, exist_ok=True)
     with open(os.path.join(work, "bodies.data"), "w") as f:
@@ -214,7 +219,8 @@ def run_lammps(bodies, dimension, k, dt, end_time, skin=None, trace=None, keep=N
     if keep is None:
         shutil.rmtree(work)
     return {"dt": dt, "steps": steps, "loop_time_s": float(m.group(1)), "atoms": int(m.group(4)),
-            "v": final[:, 1:4], "omega_max": float(np.max(np.abs(final[:, 4:7]))),
+            "v": final[:, 1:4], "omega": final[:, 4:7],
+            "omega_max": float(np.max(np.abs(final[:, 4:7]))),
             "x": final[:, 7:10],
             "warnings": warnings, "dist": dist, "input": inp}
 
@@ -295,6 +301,11 @@ def main():
     p.add_argument("--end-time", type=float)
     p.add_argument("--out", help="final velocities CSV (vx,vy,vz, body order)")
     p.add_argument("--out-positions", help="final positions CSV (x,y,z, body order)")
+    p.add_argument("--out-spins", help="final angular velocities CSV (wx,wy,wz, body order)")
+    p.add_argument("--friction", type=float, help="Coulomb's mu with Mindlin's tangential "
+                   "spring (default: frictionless)")
+    p.add_argument("--mindlin-kt", type=float, help="kt in k_t = kt sqrt(R* delta) (Pa): 8 G*; "
+                   "with --young and --poisson, 8 E / (4 (2 - nu)(1 + nu)) of one material")
     p.add_argument("--ref", help="final velocities of a reference run: report errors against it")
     p.add_argument("--speed", type=float, help="V for the errors |v - v_ref| / V "
                    "(default: the largest initial speed); with --hexagonal, the striker's")
@@ -339,11 +350,24 @@ def main():
             bodies[c] = bodies[c] - 0.5 * (bodies[c].min() + bodies[c].max())
     if k is None or args.dt is None or args.end_time is None:
         p.error("a run needs --hertz-k (or --hexagonal ...), --dt and --end-time")
-    r = run_lammps(bodies, args.dimension, k, args.dt, args.end_time, args.skin, keep=args.keep)
+    friction = None
+    if args.friction:
+        kt = args.mindlin_kt
+        if kt is None and args.young and args.poisson is not None:
+            kt = 8.0 * args.young / (4.0 * (2.0 - args.poisson) * (1.0 + args.poisson))
+        if kt is None:
+            p.error("--friction needs --mindlin-kt, or --young and --poisson")
+        friction = (args.friction, kt)
+    r = run_lammps(bodies, args.dimension, k, args.dt, args.end_time, args.skin, keep=args.keep,
+                   friction=friction)
     if args.print_input:
         sys.stderr.write(r["input"])
     if args.out:
         write_velocities(args.out, r["v"])
+    if args.out_spins:
+        with open(args.out_spins, "w") as f:
+            f.write("wx,wy,wz\n")
+            f.writelines(",".join(fmt(c) for c in row) + "\n" for row in r["omega"])
     if args.out_positions:
         with open(args.out_positions, "w") as f:
             f.write("x,y,z\n")

@@ -20,7 +20,7 @@ struct ContactTotals {
   double stored_energy = 0.0;           // J held now
   double stored_energy_at_start = 0.0;  // J held at the start (a precompressed scene's)
   // with friction: N s along the contact's tangent rows (Rotation::tangential), and the work its
-  // slip took (J, part of `work`)
+  // tangential force took (J, beside `work`, the normal force's)
   Eigen::Vector2d tangential_impulse = Eigen::Vector2d::Zero();
   double slip_work = 0.0;
 };

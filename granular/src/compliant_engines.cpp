@@ -6,6 +6,7 @@
 
 #include "compliant_engine.hpp"
 #include "mimpact/granular/moving_contacts.hpp"
+#include "mimpact/granular/rotation.hpp"
 #include "mimpact/kernel/simulation.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
 
@@ -78,11 +79,11 @@ MovingContactsOptions moving_options(const ContactModel& model, const CompliantS
 class MovingEngine : public CompliantEngine {
  public:
   MovingEngine(const ContactModel& model, const CompliantSpec& spec)
-      : motion_(*model.beads, velocities(model), model.beads->closed, moving_options(model, spec)),
+      : motion_(*model.beads, velocities(model), model.beads->closed, moving_options(model, spec),
+                spins(model)),
         impact_time_(
             *std::min_element(model.striker_arrivals.begin(), model.striker_arrivals.end())),
-        spin_components_(model.rotation ? model.rotation->components : 0),
-        spins_(model.rotation ? model.rotation->angular_velocity : Eigen::VectorXd()) {}
+        dimension_(model.dimension) {}
 
   void advance_to(double t) override { motion_.advance(t); }
   double time() const override { return motion_.time(); }
@@ -92,19 +93,33 @@ class MovingEngine : public CompliantEngine {
   }
   ContactTotals totals(Eigen::Index contact) const override {
     const MovingContact& c = motion_.contacts()[std::size_t(contact)];
-    return {.impulse = c.impulse,
-            .max_force = c.max_force,
-            .time_of_max_force = c.time_of_max_force,
-            .work = c.work(),
-            .stored_energy = c.stored_energy};
+    ContactTotals totals{.impulse = c.impulse,
+                         .max_force = c.max_force,
+                         .time_of_max_force = c.time_of_max_force,
+                         .work = c.work(),
+                         .stored_energy = c.stored_energy,
+                         .slip_work = c.slip_work};
+    // along the tangent rows of the contact's normal at the start (Rotation): its impulse is
+    // the second body's, a wall's bead counted as the second
+    if (c.tangential_impulse.squaredNorm() > 0.0) {
+      const BeadGeometry& beads = motion_.geometry();
+      const Eigen::Vector3d normal =
+          c.wall() ? beads.walls[std::size_t(-1 - c.second)].normal
+                   : (beads.position[std::size_t(c.second)] - beads.position[std::size_t(c.first)])
+                         .normalized();
+      Eigen::Vector3d tangents[2];
+      const int rows = tangent_frame(normal, dimension_, tangents);
+      for (int r = 0; r < rows; ++r)
+        totals.tangential_impulse(r) =
+            (c.wall() ? -1.0 : 1.0) * tangents[r].dot(c.tangential_impulse);
+    }
+    return totals;
   }
   Eigen::Vector3d velocity(Eigen::Index body) const override { return motion_.velocity(body); }
-  // its contacts are frictionless (simulate_compliant): the beads keep their spins
+  // about z in the plane: the model's one component
   Eigen::Vector3d angular_velocity(Eigen::Index body) const override {
-    Eigen::Vector3d omega = Eigen::Vector3d::Zero();
-    if (spin_components_ > 0)
-      omega.head(spin_components_) = spins_.segment(spin_components_ * body, spin_components_);
-    return omega;
+    const Eigen::Vector3d omega = motion_.angular_velocity(body);
+    return dimension_ == 3 ? omega : Eigen::Vector3d(omega(2), 0.0, 0.0);
   }
   bool has_positions() const override { return true; }
   Eigen::Vector3d position(Eigen::Index body) const override { return motion_.position(body); }
@@ -127,10 +142,23 @@ class MovingEngine : public CompliantEngine {
     return velocity;
   }
 
+  // the model's angular velocities as 3-vectors (about z in the plane)
+  static std::vector<Eigen::Vector3d> spins(const ContactModel& model) {
+    if (!model.rotation) return {};
+    const Rotation& rotation = *model.rotation;
+    std::vector<Eigen::Vector3d> spin(std::size_t(model.body_count()), Eigen::Vector3d::Zero());
+    for (Eigen::Index b = 0; b < model.body_count(); ++b) {
+      if (rotation.components == 3)
+        spin[std::size_t(b)] = rotation.of(rotation.angular_velocity, b);
+      else
+        spin[std::size_t(b)](2) = rotation.angular_velocity(b);
+    }
+    return spin;
+  }
+
   MovingContacts motion_;
   double impact_time_;  // s
-  int spin_components_;
-  Eigen::VectorXd spins_;  // rad/s, spin_components_ per body
+  int dimension_;
 };
 
 // When the impact starts and its last contact opens; ends a free scene once it has come apart.

@@ -18,6 +18,13 @@ double hertz_stiffness(double radius_a, const Material& a, double radius_b, cons
   return 4.0 / 3.0 * std::sqrt(effective_radius) * effective_modulus(a, b);
 }
 
+double mindlin_ratio(const Material& a, const Material& b) {
+  auto compliance = [](const Material& m) {  // (2 - nu) / G
+    return (2.0 - m.poisson) * 2.0 * (1.0 + m.poisson) / m.young;
+  };
+  return 4.0 / (compliance(a) + compliance(b)) / effective_modulus(a, b);
+}
+
 double hertz_stiffness_wall(double radius, const Material& bead, const Material& wall) {
   return 4.0 / 3.0 * std::sqrt(radius) * effective_modulus(bead, wall);
 }

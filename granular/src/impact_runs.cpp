@@ -301,12 +301,13 @@ CompliantRun simulate_compliant(const ContactModel& model,
                                 int frame_every, const RunLimits& limits) {
   if (spec.geometry == Geometry::moving && model.beads)
     for (const numerics::ContactLaw& law : model.laws)
-      if (law.friction > 0.0)
+      if (law.friction != model.beads->shape.friction)
         throw InvalidInput(invalid_value_message(
-            "contact.friction", law.friction,
-            "0 with the compliant method in the moving geometry, whose contacts have no "
-            "tangential force yet; compliant.geometry \"frozen\" and the LZB method integrate "
-            "friction"));
+            "contact.pairs' friction", law.friction,
+            "the scene's contact.friction (" + to_text(model.beads->shape.friction) +
+                ") with the compliant method in the moving geometry, whose contacts all rub "
+                "alike so far; compliant.geometry \"frozen\" and the LZB method take friction "
+                "per pair"));
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
   RecordingBudget budget = compliant_budget(model, record, frame_every, limits);

@@ -27,15 +27,27 @@ constexpr double kResolvedOverlap = 1e3;
 
 MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::Vector3d> velocity,
                                const std::vector<std::pair<std::int32_t, std::int32_t>>& closed,
-                               MovingContactsOptions options)
+                               MovingContactsOptions options,
+                               const std::vector<Eigen::Vector3d>& angular_velocity)
     : world_(std::make_unique<MovingWorld>(geometry, options)) {
+  world_->rough = geometry.shape.friction > 0.0;
+  if (world_->rough && geometry.shape.effective_restitution() < 1.0)
+    throw InvalidInput(invalid_value_message(
+        "contact.restitution", geometry.shape.restitution,
+        "1 with friction in the moving geometry, whose Mindlin springs are integrated for "
+        "elastic contacts"));
   double energy = 0.0;
   for (std::size_t b = 0; b < world_->bodies.size(); ++b) {
-    world_->bodies[b].x = world_->bodies[b].anchor = geometry.position[b];
-    world_->bodies[b].v = velocity[b];
-    world_->bodies[b].inverse_mass = 1.0 / geometry.mass(Eigen::Index(b));
-    energy += 0.5 * geometry.mass(Eigen::Index(b)) * velocity[b].squaredNorm();
-    if (velocity[b].squaredNorm() > 0.0) note_moving(std::int32_t(b));
+    MovingBody& body = world_->bodies[b];
+    body.x = body.anchor = geometry.position[b];
+    body.v = velocity[b];
+    if (!angular_velocity.empty()) body.omega = angular_velocity[b];
+    body.inverse_mass = 1.0 / geometry.mass(Eigen::Index(b));
+    energy += 0.5 * geometry.mass(Eigen::Index(b)) *
+              (velocity[b].squaredNorm() +
+               0.4 * std::pow(geometry.radius(Eigen::Index(b)), 2) * body.omega.squaredNorm());
+    if (velocity[b].squaredNorm() > 0.0 || body.omega.squaredNorm() > 0.0)
+      note_moving(std::int32_t(b));
   }
   for (const auto& [first, second] : closed) world_->contact_id(first, second);
   world_->speed_bound = std::sqrt(2.0 * energy / geometry.mass.minCoeff());
@@ -92,6 +104,8 @@ const std::vector<MovingContact>& MovingContacts::contacts() const { return worl
 
 const MovingContactsStats& MovingContacts::stats() const { return world_->stats; }
 
+const BeadGeometry& MovingContacts::geometry() const { return world_->geometry; }
+
 Eigen::Vector3d MovingContacts::position(Eigen::Index body) const {
   return world_->bodies[std::size_t(body)].position_at(time_);
 }
@@ -99,9 +113,17 @@ Eigen::Vector3d MovingContacts::velocity(Eigen::Index body) const {
   return world_->bodies[std::size_t(body)].v;
 }
 
+Eigen::Vector3d MovingContacts::angular_velocity(Eigen::Index body) const {
+  return world_->bodies[std::size_t(body)].omega;
+}
+
 double MovingContacts::kinetic_energy() const {
   double energy = 0.0;
-  for (const MovingBody& b : world_->bodies) energy += 0.5 * b.v.squaredNorm() / b.inverse_mass;
+  for (std::size_t k = 0; k < world_->bodies.size(); ++k) {
+    const MovingBody& b = world_->bodies[k];
+    const double r = world_->geometry.radius(Eigen::Index(k));
+    energy += 0.5 * (b.v.squaredNorm() + 0.4 * r * r * b.omega.squaredNorm()) / b.inverse_mass;
+  }
   return energy;
 }
 

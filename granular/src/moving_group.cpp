@@ -32,6 +32,7 @@ void MovingGroup::add_member(std::int32_t body) {
   state_.position.push_back(b.position_at(time_));
   state_.shift.push_back(b.shift_at(time_));
   state_.velocity.push_back(b.v);
+  state_.spin.push_back(b.omega);
 }
 
 void MovingGroup::recall(Contact& c) const {
@@ -100,6 +101,7 @@ void MovingGroup::carry_on(std::int32_t id, double start,
   state_.position.clear();
   state_.shift.clear();
   state_.velocity.clear();
+  state_.spin.clear();
   // its former members first, already paired among themselves; then the new ones
   for (std::int32_t body : members)
     if (world_.bodies[std::size_t(body)].owner == kFormerMember) add_member(body);
@@ -197,9 +199,16 @@ void MovingGroup::restart(double t) {
     const Contact& c = contacts_[std::size_t(springs_.active[j])];
     springs_.peaks[j] = {.max_force = c.max_force, .time_of_max = c.time_of_max_force};
   }
-  if (!dense_) dense_ = std::make_unique<numerics::RungeKuttaNystrom>(world_.options.ode);
   const StepStart from = step_start();
-  dense_->restart(y_, t, from.step, std::size_t(d) * n, 1.0 / world_.time_scale, from.last_error);
+  if (world_.rough) {
+    restart_rough();
+    if (!rough_) rough_ = std::make_unique<numerics::DenseOutput>(world_.options.ode);
+    probe_.resize(y_.size());
+    rough_->restart(y_, t, from.step);
+  } else {
+    if (!dense_) dense_ = std::make_unique<numerics::RungeKuttaNystrom>(world_.options.ode);
+    dense_->restart(y_, t, from.step, std::size_t(d) * n, 1.0 / world_.time_scale, from.last_error);
+  }
   fresh_ = true;
 }
 
@@ -211,7 +220,8 @@ void MovingGroup::restart(double t) {
 // mirror halves of a group that parts start alike (docs/design/moving_geometry.md, "Round-off
 // and symmetry").
 MovingGroup::StepStart MovingGroup::step_start() const {
-  if (last_step_ > 0.0) return {last_step_, dense_->last_error()};
+  if (last_step_ > 0.0)
+    return {last_step_, dense_ ? dense_->last_error() : numerics::RungeKuttaNystrom::kNoLastError};
   std::vector<std::pair<double, double>> hints;  // (step, error)
   for (std::int32_t body : members_) {
     const MovingBody& b = world_.bodies[std::size_t(body)];
@@ -232,6 +242,10 @@ void MovingGroup::member_state(std::size_t slot, const double* y, Eigen::Vector3
 }
 
 void MovingGroup::rhs(const double* y, double* dydt) {
+  if (world_.rough) {
+    if (dimension_ == 3) return rhs_rough<3>(y, dydt);
+    return rhs_rough<2>(y, dydt);
+  }
   if (dimension_ == 3) return rhs_in<3>(y, dydt);
   rhs_in<2>(y, dydt);
 }
@@ -315,7 +329,12 @@ void MovingGroup::move_to(double t) {
   const int d = dimension_;
   const std::size_t n = members_.size();
   settle_histories(t);
-  dense_->state_at(t, y_);
+  if (rough_) {
+    rough_->state_at(t, y_);
+    move_rough();
+  } else {
+    dense_->state_at(t, y_);
+  }
   for (std::size_t m = 0; m < n; ++m) {
     member_state(m, y_.data(), state_.position[m], state_.velocity[m]);
     state_.shift[m] = state_.origin[m] + read(y_.data() + d * m, d);
@@ -341,7 +360,7 @@ void MovingGroup::move_to(double t) {
 }
 
 void MovingGroup::track_peaks(double t0, double t1) {
-  if (t1 <= t0) return;
+  if (t1 <= t0 || rough_) return;  // with friction: the peaks of the segments' ends (move_to)
   const std::size_t impulses = 2 * std::size_t(dimension_) * members_.size();
   // the impulses' rates are T F / m (rhs_in)
   const double to_force = world_.mass_scale / world_.time_scale;
@@ -363,17 +382,24 @@ void MovingGroup::handle(const Event& event) {
 
 void MovingGroup::take_step() {
   fresh_ = false;
-  dense_->step(Motion{*this});
-  last_step_ = dense_->last_step();
+  if (rough_) {
+    rough_->step([this](const std::vector<double>& y, std::vector<double>& dydt, double) {
+      rhs(y.data(), dydt.data());
+    });
+    last_step_ = rough_->last_step();
+  } else {
+    dense_->step(Motion{*this});
+    last_step_ = dense_->last_step();
+  }
   world_.stats.member_steps += std::int64_t(members_.size());
   if (++world_.stats.steps > world_.options.max_steps)
     throw Error("moving contacts: max_steps = " + std::to_string(world_.options.max_steps) +
-                " time steps taken by t = " + to_text(dense_->time()) +
+                " time steps taken by t = " + to_text(stepper_time()) +
                 " s (compliant.max_steps in a scene); the contacts' time scale is below what the "
                 "tolerance and double precision resolve");
-  const auto& now = dense_->state();
+  const auto& now = stepper_state();
   if (!std::all_of(now.begin(), now.end(), [](double x) { return std::isfinite(x); }))
-    throw Error("moving contacts: the state is not finite at t = " + to_text(dense_->time()) +
+    throw Error("moving contacts: the state is not finite at t = " + to_text(stepper_time()) +
                 " s; speeds, forces or stiffnesses are out of the range double precision carries");
 }
 
@@ -381,12 +407,12 @@ void MovingGroup::integrate(double end) {
   // the groups formed after this one (collisions) own bodies it may have watched as free
   restart(time_);
   while (time_ < end) {
-    if (dense_->time() <= time_) {
+    if (stepper_time() <= time_) {
       settle_histories(time_);
       take_step();
       continue;
     }
-    const double segment_end = std::min(dense_->time(), end);
+    const double segment_end = std::min(stepper_time(), end);
     Event event;
     const bool found = next_event(time_, segment_end, event);
     track_peaks(time_, found ? event.time : segment_end);
@@ -409,10 +435,11 @@ void MovingGroup::commit() {
     b.x = state_.position[m];
     b.shift = state_.shift[m];
     b.v = state_.velocity[m];
+    b.omega = state_.spin[m];
     b.time = time_;
     b.owner = b.slot = -1;
     b.step_hint = last_step_;
-    b.error_hint = dense_->last_error();
+    b.error_hint = dense_ ? dense_->last_error() : numerics::RungeKuttaNystrom::kNoLastError;
     b.last_window = world_.stats.windows;
     b.last_group = id_;
   }
@@ -423,7 +450,10 @@ void MovingGroup::commit() {
     if (record.max_force == 0.0 && c.max_force > 0.0) ++world_.stats.contacts_loaded;
     static_cast<ContactState&>(record) = c;
     record.joined = c.loaded;
-    if (!c.loaded) record.force = 0.0;
+    if (!c.loaded) {
+      record.force = 0.0;
+      record.stretch.setZero();  // it opened: its spring forgets
+    }
     record.stored_energy = c.loaded ? stored_energy(c) : 0.0;
     if (c.loaded) world_.loaded_ids.push_back(c.world_id);
   }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mimpact/numerics/contact_events.hpp"
+#include "mimpact/numerics/dense_output.hpp"
 #include "mimpact/numerics/onset_quadrature.hpp"
 #include "mimpact/numerics/runge_kutta_nystrom.hpp"
 #include "moving_world.hpp"
@@ -128,6 +129,26 @@ class MovingGroup {
   void rhs(const double* y, double* dydt);
   template <int D>
   void rhs_in(const double* y, double* dydt);
+  // With friction (world_.rough; moving_group_rough.cpp): the state holds, after the impulses,
+  // each member's spin as T r omega (m; one component in the plane, three in space), each
+  // spring's tangential impulse on its second body (T p_t / m_s, m) and its stretch (m), D
+  // components each, then each spring's slip work (J, times T / (m_s speed_bound): m); the
+  // group steps by Dormand-Prince 5(4) (rough_), the forces reading the
+  // velocities. Every contact is Hertz's with Mindlin's spring under Coulomb's cap
+  // (numerics::mindlin::rates_by_state; docs/friction.md, section 3) and LAMMPS's conventions:
+  // the slip with the full radii, the torque's lever r - delta/2 between beads, r at a wall.
+  struct RoughLayout {
+    std::size_t spins = 0, tangential = 0, stretches = 0, works = 0;  // first slots
+    int spin_size = 1;
+  };
+  template <int D>
+  void rhs_rough(const double* y, double* dydt);
+  void restart_rough();  // y_ extended past the impulses, from the members and contacts
+  void move_rough();     // the spins, tangential impulses and stretches of y_ into them
+  double stepper_time() const { return rough_ ? rough_->time() : dense_->time(); }
+  const std::vector<double>& stepper_state() const {
+    return rough_ ? rough_->state() : dense_->state();
+  }
   // a member's position (m) and velocity (m/s) along the state y
   double wall_height(const Contact& c) const;
   void member_state(std::size_t slot, const double* y, Eigen::Vector3d& x,
@@ -135,7 +156,9 @@ class MovingGroup {
   // gap and rate of contact c, or of watched pair w at time t, along the state y
   void contact_gap(const Contact& c, const double* y, double& gap, double& rate) const;
   void watch_gap(const Watch& w, double t, const double* y, double& gap, double& rate) const;
-  void probe_entry(std::size_t entry, const numerics::RungeKuttaNystrom::Weights& w);
+  template <class Stepper>
+  void probe_entry(const Stepper& stepper, std::size_t entry, const typename Stepper::Weights& w);
+  void probe_entry_at(std::size_t entry, double t);  // the same, by whichever stepper steps
   // the entries' gaps and rates at t, in their order
   void measure(double t, const std::vector<std::size_t>& entries, Samples& samples);
   bool suspect(std::size_t k, double h, const numerics::Overlaps& overlaps) const;
@@ -184,7 +207,9 @@ class MovingGroup {
     std::vector<Eigen::Vector3d> position, velocity;  // m, m/s
     std::vector<Eigen::Vector3d> shift;               // position less anchor (m)
     std::vector<Eigen::Vector3d> origin;              // shifts at the last restart (m)
-    std::vector<double> gain;  // T / m, a force to the state's w' (moving_contacts.hpp)
+    std::vector<double> gain;           // T / m, a force to the state's w' (moving_contacts.hpp)
+    std::vector<Eigen::Vector3d> spin;  // rad/s (world_.rough)
+    std::vector<double> spin_gain;      // T / (0.4 m r), a torque to the state's spin rate
   };
   // The contacts in the right-hand side, as it reads them. It takes the springs a chunk at a
   // time in three passes: the separations gathered from the state, the elastic Hertz forces
@@ -224,6 +249,8 @@ class MovingGroup {
   Springs springs_;
   EventSearch search_;
   std::unique_ptr<numerics::RungeKuttaNystrom> dense_;
+  std::unique_ptr<numerics::DenseOutput> rough_;  // in place of dense_ where world_.rough
+  RoughLayout rough_layout_;
   std::vector<double> y_, probe_;
   double last_step_ = 0.0;
   bool fresh_ = true;  // restarted, no step taken since

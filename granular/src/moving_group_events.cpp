@@ -113,13 +113,20 @@ void MovingGroup::watch_gap(const Watch& w, double t, const double* y, double& g
 
 // The member a watched body's entry reads, written into probe_ from the dense output at w's
 // time: an event search reads that, not the whole state.
-void MovingGroup::probe_entry(std::size_t entry, const numerics::RungeKuttaNystrom::Weights& w) {
+template <class Stepper>
+void MovingGroup::probe_entry(const Stepper& stepper, std::size_t entry,
+                              const typename Stepper::Weights& w) {
   const std::size_t n = members_.size();
   const auto d = std::size_t(dimension_);
   for (std::size_t i = d * std::size_t(search_.watched[entry].member), end = i + d; i < end; ++i) {
-    probe_[i] = dense_->component_at(w, i);
-    probe_[d * n + i] = dense_->component_at(w, d * n + i);
+    probe_[i] = stepper.component_at(w, i);
+    probe_[d * n + i] = stepper.component_at(w, d * n + i);
   }
+}
+
+void MovingGroup::probe_entry_at(std::size_t entry, double t) {
+  if (rough_) return probe_entry(*rough_, entry, rough_->weights_at(t));
+  probe_entry(*dense_, entry, dense_->weights_at(t));
 }
 
 // At the step's end, where most are taken, the entries read the step's own state, not its dense
@@ -127,16 +134,23 @@ void MovingGroup::probe_entry(std::size_t entry, const numerics::RungeKuttaNystr
 void MovingGroup::measure(double t, const std::vector<std::size_t>& entries, Samples& samples) {
   samples.gap.resize(entries.size());
   samples.rate.resize(entries.size());
-  if (t == dense_->time()) {
+  if (t == stepper_time()) {
     for (std::size_t k = 0; k < entries.size(); ++k)
-      watch_gap(search_.watched[entries[k]], t, dense_->state().data(), samples.gap[k],
+      watch_gap(search_.watched[entries[k]], t, stepper_state().data(), samples.gap[k],
                 samples.rate[k]);
     return;
   }
-  const numerics::RungeKuttaNystrom::Weights w = dense_->weights_at(t);
-  for (std::size_t k = 0; k < entries.size(); ++k) {
-    probe_entry(entries[k], w);
-    watch_gap(search_.watched[entries[k]], t, probe_.data(), samples.gap[k], samples.rate[k]);
+  auto probe_all = [&](const auto& stepper) {
+    const auto w = stepper.weights_at(t);
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      probe_entry(stepper, entries[k], w);
+      watch_gap(search_.watched[entries[k]], t, probe_.data(), samples.gap[k], samples.rate[k]);
+    }
+  };
+  if (rough_) {
+    probe_all(*rough_);
+  } else {
+    probe_all(*dense_);
   }
 }
 
@@ -204,7 +218,7 @@ bool MovingGroup::next_event(double a, double b, Event& event) {
       };
       const numerics::Bracket bracket = numerics::narrow_crossing(
           [&](double t) {
-            probe_entry(entry, dense_->weights_at(t));
+            probe_entry_at(entry, t);
             watch_gap(search_.watched[entry], t, probe_.data(), search_.one.gap[0],
                       search_.one.rate[0]);
             return value(search_.one.gap[0], search_.one.rate[0]);

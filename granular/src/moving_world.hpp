@@ -24,8 +24,9 @@ struct MovingBody {
   // difference and the shifts', not from coordinates rounded to the packing's size at every
   // window (which set a floor of 1e-12 of the speed on a 10-bead line's velocities)
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero(), shift = Eigen::Vector3d::Zero();
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();  // m/s
-  double time = 0.0;                            // s; flying freely, it is at x + v (t - time)
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();      // m/s
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();  // rad/s (about z in the plane): kept in flight
+  double time = 0.0;                                // s; flying freely, it is at x + v (t - time)
   double inverse_mass = 0.0;
   std::int32_t owner = -1;  // the group integrating it in this window, or -1: flying freely
   std::int32_t slot = -1;   // its place among its group's members
@@ -61,7 +62,9 @@ struct MovingWorld {
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> contacts_of;
   std::vector<std::int32_t> loaded_ids;  // contacts carrying force now
   double speed_bound = 0.0;  // m/s: no body moves faster (the energy is all it can have)
-  double first_step = 0.0;   // s, of a group that starts from nothing
+  // some contact has friction: the groups integrate spins and Mindlin springs (MovingGroup)
+  bool rough = false;
+  double first_step = 0.0;  // s, of a group that starts from nothing
   // The units of a group's state (docs/design/moving_geometry.md): velocities are integrated as
   // time_scale v (m) and impulses as time_scale p / mass_scale (m), so that one absolute
   // tolerance weighs a position, a velocity and an impulse alike at the quickest contact's

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 
 #include "mimpact/numerics/coulomb_phase.hpp"
 
@@ -62,6 +63,28 @@ double Spring::watched(const double* xi, const double* slip, int rows, const Ter
   double along = 0.0;
   for (int k = 0; k < rows; ++k) along += d[k] * slip[k];
   return along - terms.cap_rate;
+}
+
+void rates_by_state(const double* xi, const double* slip, int rows, const Terms& terms,
+                    double* force, double* xi_rate) {
+  double d[3] = {0.0, 0.0, 0.0}, size = 0.0, along = 0.0;
+  for (int k = 0; k < rows; ++k) size += xi[k] * xi[k];
+  size = std::sqrt(size);
+  const double* toward = size > 0.0 ? xi : slip;
+  double length = 0.0;
+  for (int k = 0; k < rows; ++k) length += toward[k] * toward[k];
+  length = std::sqrt(length);
+  for (int k = 0; k < rows; ++k) {
+    d[k] = length > 0.0 ? toward[k] / length : 0.0;
+    along += d[k] * slip[k];
+  }
+  const double elastic = terms.stiffness * size;
+  const bool slipping = elastic >= terms.limit && along > terms.cap_rate;
+  const double magnitude = std::min(elastic, terms.limit);
+  for (int k = 0; k < rows; ++k) {
+    force[k] = -magnitude * d[k];
+    xi_rate[k] = slipping ? slip[k] - along * d[k] + terms.cap_rate * d[k] : slip[k];
+  }
 }
 
 void Spring::pass(double* xi, int rows, const Terms& terms) {

@@ -2,6 +2,7 @@
 
 #include "event_driven_motion.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/plugins/event_driven_integrator.hpp"
 
 // The event-driven scheme's settling before each smooth motion (algorithm 6 of Nguyen &
 // Brogliato 2011): penetrations undone, contacts brought to rest, and those held closed chosen,

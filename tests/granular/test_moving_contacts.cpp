@@ -10,26 +10,10 @@
 #include <numbers>
 
 #include "mimpact/granular/moving_contacts.hpp"
+#include "steel_beads.hpp"
 
 namespace mimpact::granular {
 namespace {
-
-const Material kSteel{.density = 7780.0, .young = 203e9, .poisson = 0.3};
-constexpr double kRadius = 0.005;
-
-BeadGeometry beads(const std::vector<Eigen::Vector3d>& positions, int dimension = 2,
-                   double restitution = 1.0) {
-  BeadGeometry g;
-  g.dimension = dimension;
-  g.position = positions;
-  const Eigen::Index n = Eigen::Index(positions.size());
-  g.radius = Eigen::VectorXd::Constant(n, kRadius);
-  g.mass = Eigen::VectorXd::Constant(n, bead_mass(kRadius, kSteel));
-  g.material.assign(std::size_t(n), kSteel);
-  g.shape.exponent = 1.5;
-  g.shape.restitution = restitution;
-  return g;
-}
 
 MovingContactsOptions tight() {
   MovingContactsOptions options;
@@ -72,7 +56,7 @@ double hertz_deflection(double K, double mu, double R, double b, double V) {
 // within the rounding of the beads' coordinates (1e-2 m x 2.2e-16) is refused with a reason, not
 // integrated into a result that never saw the contact; at 1 m/s (1e-5 m) the same beads run.
 TEST(MovingContacts, OverlapsBelowTheCoordinatesRoundingAreRefused) {
-  const BeadGeometry two = beads({{0, 0, 0}, {2 * kRadius, 0, 0}});
+  const BeadGeometry two = steel_beads({{0, 0, 0}, {2 * kRadius, 0, 0}});
   std::vector<Eigen::Vector3d> velocity = {{1e-20, 0, 0}, {0, 0, 0}};
   try {
     MovingContacts motion(two, velocity, {});
@@ -97,7 +81,7 @@ TEST(MovingContacts, ObliqueCollisionMatchesTheHertzScattering) {
     const double b = share * R;
     const double start_gap = 1e-6;
     const Eigen::Vector3d target(std::sqrt((R + start_gap) * (R + start_gap) - b * b), b, 0.0);
-    const BeadGeometry geometry = beads({Eigen::Vector3d::Zero(), target});
+    const BeadGeometry geometry = steel_beads({Eigen::Vector3d::Zero(), target});
     MovingContacts motion(geometry, {Eigen::Vector3d(V, 0, 0), Eigen::Vector3d::Zero()}, {},
                           tight());
     motion.advance(1e-2);
@@ -127,7 +111,7 @@ TEST(MovingContacts, LargestForceAndItsTimeMatchHertz) {
     for (const double share : {0.0, 0.5}) {
       const double b = share * R;
       const Eigen::Vector3d target(std::sqrt((R + start_gap) * (R + start_gap) - b * b), b, 0.0);
-      const BeadGeometry geometry = beads({Eigen::Vector3d::Zero(), target});
+      const BeadGeometry geometry = steel_beads({Eigen::Vector3d::Zero(), target});
       MovingContactsOptions options = tight();
       options.ode.relative_tolerance = tolerance;
       MovingContacts motion(geometry, {Eigen::Vector3d(V, 0, 0), Eigen::Vector3d::Zero()}, {},
@@ -167,7 +151,7 @@ TEST(MovingContacts, LargestForceAndItsTimeMatchHertz) {
 // e = 0.5.
 TEST(MovingContacts, WallBounceKeepsTheTangentAndRestitutesTheNormal) {
   for (const double e : {1.0, 0.5}) {
-    BeadGeometry geometry = beads({Eigen::Vector3d(0.0, kRadius + 1e-6, 0.0)}, 2, e);
+    BeadGeometry geometry = steel_beads({Eigen::Vector3d(0.0, kRadius + 1e-6, 0.0)}, 2, e);
     geometry.walls.push_back({Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY()});
     geometry.wall_material.push_back(kSteel);
     const Eigen::Vector3d v(std::cos(std::numbers::pi / 3), -std::sin(std::numbers::pi / 3), 0.0);
@@ -194,7 +178,7 @@ TEST(MovingContacts, WallBounceKeepsTheTangentAndRestitutesTheNormal) {
 TEST(MovingContacts, HeadOnInelasticPairRestitutes) {
   for (const double e : {0.0, 0.01, 0.3, 0.9}) {
     const BeadGeometry geometry =
-        beads({Eigen::Vector3d::Zero(), Eigen::Vector3d(2 * kRadius + 1e-6, 0, 0)}, 2, e);
+        steel_beads({Eigen::Vector3d::Zero(), Eigen::Vector3d(2 * kRadius + 1e-6, 0, 0)}, 2, e);
     const double speed = 1.0, m = geometry.mass(0);
     MovingContactsOptions options;
     options.ode.relative_tolerance = 1e-10;
@@ -228,7 +212,7 @@ TEST(MovingContacts, StruckClusterConservesMomentumAndEnergy) {
                              0.0);
   const Eigen::Vector3d direction = Eigen::Vector3d(0.3, 1.0, 0.0).normalized();
   positions.push_back(positions[2] - (2 * kRadius + 1e-6) * direction);
-  const BeadGeometry geometry = beads(positions);
+  const BeadGeometry geometry = steel_beads(positions);
   std::vector<Eigen::Vector3d> velocity(positions.size(), Eigen::Vector3d::Zero());
   velocity.back() = direction;
   MovingContactsOptions options;

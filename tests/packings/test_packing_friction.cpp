@@ -267,8 +267,11 @@ TEST(PackingFriction, BadOffsetsSpinsAndUnsupportedCombinationsAreRefused) {
       refusal(R"("velocity": [0, 0, -1], "offset": [0.001, 0, 0.001])", rough, one_bead(3).string())
           .find("is not perpendicular to its velocity"),
       std::string::npos);
-  EXPECT_NE(refusal(R"("velocity": [1, 0])", rough + R"(, "method": "compliant")", planar)
-                .find("contact.friction = 0.3 is invalid; allowed: 0 with the compliant method"),
+  EXPECT_NE(refusal(R"("velocity": [1, 0])",
+                    R"(, "contact": {"friction": 0.3, "restitution": 0.9}, "method": "compliant")",
+                    planar)
+                .find("contact.restitution = 0.9 is invalid; allowed: 1 with friction in the "
+                      "moving geometry"),
             std::string::npos);
   EXPECT_NE(refusal(R"("velocity": [1, 0])", R"(, "contact": {"friction": -0.1})", planar)
                 .find("contact.friction = -0.1 is invalid"),

@@ -38,12 +38,16 @@ struct BeadGeometry {
   std::vector<std::pair<std::int32_t, std::int32_t>> closed;
 
   Eigen::Index body_count() const { return radius.size(); }
-  // the law of bodies i and k, and of body i and wall w: `shape` with their Hertz stiffness
+  // the law of bodies i and k, and of body i and wall w: `shape` with their Hertz stiffness and,
+  // with friction, Mindlin's tangential stiffness ratio
   numerics::ContactLaw bead_law(Eigen::Index i, Eigen::Index k) const {
     numerics::ContactLaw law = shape;
     law.stiffness = fixed_stiffness > 0.0 ? fixed_stiffness
                                           : hertz_stiffness(radius(i), material[std::size_t(i)],
                                                             radius(k), material[std::size_t(k)]);
+    if (law.friction > 0.0)
+      law.tangential_stiffness_ratio =
+          mindlin_ratio(material[std::size_t(i)], material[std::size_t(k)]);
     return law;
   }
   numerics::ContactLaw wall_law(Eigen::Index i, std::size_t w) const {
@@ -52,6 +56,8 @@ struct BeadGeometry {
         fixed_stiffness > 0.0
             ? fixed_stiffness
             : hertz_stiffness_wall(radius(i), material[std::size_t(i)], wall_material[w]);
+    if (law.friction > 0.0)
+      law.tangential_stiffness_ratio = mindlin_ratio(material[std::size_t(i)], wall_material[w]);
     return law;
   }
 };

@@ -35,5 +35,9 @@ double hertz_stiffness(double radius_a, const Material& a, double radius_b, cons
 
 // The same for a sphere against a flat rigid wall of the given material (R* = R).
 double hertz_stiffness_wall(double radius, const Material& bead, const Material& wall);
+// Mindlin's tangential stiffness over Hertz's normal one, k_t / (dF/d delta) = 8 G* a / (2 E* a)
+// = 4 G*/E*, with 1/G* = (2 - nu_a)/G_a + (2 - nu_b)/G_b (G = E / (2 (1 + nu))): 2 (1 - nu) /
+// (2 - nu) for one material (numerics::ContactLaw::tangential_stiffness_ratio).
+double mindlin_ratio(const Material& a, const Material& b);
 
 }  // namespace mimpact::granular

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 
 #include "mimpact/numerics/contact_law.hpp"
@@ -8,8 +9,9 @@ namespace mimpact::granular {
 
 // What a contact carries from one window to the next and reports, wherever it is held (the
 // world's record, MovingContact, or a group's working copy while it integrates the contact): its
-// law, its history (the normal one, its largest overlap since it closed; a tangential one
-// belongs beside it) and its record over the run. One definition, copied whole between the two.
+// law, its histories (the normal one, its largest overlap since it closed; with friction its
+// Mindlin spring's stretch) and its record over the run. One definition, copied whole between
+// the two.
 struct ContactState {
   numerics::ContactLaw law;
   double max_compression = 0.0;  // m, since it last closed: where it unloads from (e < 1)
@@ -18,6 +20,12 @@ struct ContactState {
   double max_force = 0.0;        // N, and when (s)
   double time_of_max_force = 0.0;
   double dissipated = 0.0;  // J, lost at its turns from loading to unloading (e < 1)
+  // with friction: its tangential spring's stretch (m, in the world's frame, perpendicular to
+  // the normal from its first body to its second, 0 while open) and its tangential impulse on
+  // the second (N s)
+  Eigen::Vector3d stretch = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tangential_impulse = Eigen::Vector3d::Zero();
+  double slip_work = 0.0;  // J, the tangential force's work against the slip (beside work())
 };
 
 // One contact that has carried force: two bodies, or a body and a wall.

@@ -35,11 +35,15 @@ class MovingContacts {
  public:
   using Options = MovingContactsOptions;
   // `velocity` per body; `closed`: the contacts to report first, in order (their records are
-  // contacts()[0, closed.size()), whether or not they carry force). Throws InvalidInput naming
-  // an option out of range.
+  // contacts()[0, closed.size()), whether or not they carry force); `angular_velocity` per body
+  // (rad/s; empty: none), the bodies solid spheres. With friction (geometry.shape.friction > 0)
+  // every contact has Coulomb's law with Mindlin's tangential spring (docs/friction.md, section
+  // 3, LAMMPS's conventions), and the bodies turn. Throws InvalidInput naming an option out of
+  // range, or friction with restitution below 1.
   MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::Vector3d> velocity,
                  const std::vector<std::pair<std::int32_t, std::int32_t>>& closed,
-                 MovingContactsOptions options = {});
+                 MovingContactsOptions options = {},
+                 const std::vector<Eigen::Vector3d>& angular_velocity = {});
   ~MovingContacts();
 
   // Advances to `target`, or until the motion ends (ended()); returns the time reached.
@@ -48,11 +52,13 @@ class MovingContacts {
   // nothing will change but the flights.
   bool ended() const;
   double time() const { return time_; }
+  const BeadGeometry& geometry() const;
   Eigen::Vector3d position(Eigen::Index body) const;
   Eigen::Vector3d velocity(Eigen::Index body) const;
+  Eigen::Vector3d angular_velocity(Eigen::Index body) const;  // rad/s
   // every contact that has carried force, and those given at construction
   const std::vector<MovingContact>& contacts() const;
-  // the kinetic energy of the bodies and the energy their contacts hold (J)
+  // the kinetic energy of the bodies (with their spins) and the energy their contacts hold (J)
   double kinetic_energy() const;
   double stored_energy() const;
   const MovingContactsStats& stats() const;

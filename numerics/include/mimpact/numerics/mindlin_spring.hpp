@@ -46,4 +46,12 @@ struct Spring {
   void pass(double* xi, int rows, const Terms& terms);
 };
 
+// The same spring with its mode read from its state, for an integration that locates no switch
+// (the moving geometry's groups, whose error control shortens the steps across one): it slips
+// where its stretch has reached the cap and the slip stretches it further, d.s > r_c', else
+// sticks; its force is capped at mu F_n either way, so that it is continuous in the stretch.
+// Writes f_t and dxi/dt along the `rows` (1 to 3) components.
+void rates_by_state(const double* xi, const double* slip, int rows, const Terms& terms,
+                    double* force, double* xi_rate);
+
 }  // namespace mimpact::numerics::mindlin

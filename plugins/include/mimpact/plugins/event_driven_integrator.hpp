@@ -33,6 +33,10 @@ struct EventDrivenOptions {
   }
 };
 
+// the smooth motion and what its event search watches (src/event_driven_motion.hpp)
+struct EventDrivenMotion;
+struct EventDrivenWatch;
+
 // The event-driven scheme of Nguyen & Brogliato (2011) (section 2.2, algorithms 4-6). Between
 // events the smooth motion M q'' = F + W_s lambda keeps the persistent contacts s closed
 // (bilateral, lambda from H_s lambda = -b_s); it is integrated by the Dormand-Prince 5(4) method of
@@ -71,8 +75,8 @@ class EventDrivenIntegrator : public kernel::OneStepIntegrator {
   const EventDrivenOptions& options() const { return options_; }
 
  private:
-  struct Motion;
-  struct Watched;
+  using Motion = EventDrivenMotion;
+  using Watched = EventDrivenWatch;
   struct Event {
     double time;
     std::vector<Index> closing, detaching;
