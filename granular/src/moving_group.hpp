@@ -141,6 +141,17 @@ class MovingGroup {
     std::size_t spins = 0, tangential = 0, stretches = 0, works = 0;  // first slots
     int spin_size = 1;
   };
+  // A rough spring's contact along the state y: the normal n from its first body to its second
+  // (a wall: against the wall's normal), their distance (m; 0 at a wall) and overlap (m), the
+  // second's velocity less the first's, r_a w_a + r_b w_b (m/s).
+  struct RoughKinematics {
+    Eigen::Vector3d normal, relative, rolling;
+    double distance = 0.0, delta = 0.0;
+  };
+  template <int D>
+  RoughKinematics rough_kinematics(std::size_t spring, const double* y) const;
+  template <int D>
+  Eigen::Vector3d rolling_of(std::size_t member, const double* y) const;  // r omega (m/s)
   template <int D>
   void rhs_rough(const double* y, double* dydt);
   void restart_rough();  // y_ extended past the impulses, from the members and contacts

@@ -65,6 +65,43 @@ void MovingGroup::move_rough() {
 }
 
 template <int D>
+Eigen::Vector3d MovingGroup::rolling_of(std::size_t m, const double* y) const {
+  const RoughLayout& layout = rough_layout_;
+  const double* spin = y + layout.spins + std::size_t(layout.spin_size) * m;
+  const double inverse_T = 1.0 / world_.time_scale;
+  return D == 3 ? read(spin, 3, inverse_T) : Eigen::Vector3d(0.0, 0.0, inverse_T * spin[0]);
+}
+
+template <int D>
+MovingGroup::RoughKinematics MovingGroup::rough_kinematics(std::size_t j, const double* y) const {
+  const Spring& s = springs_.list[j];
+  const auto a = std::size_t(s.first);
+  const std::size_t velocities = std::size_t(D) * members_.size();
+  const double inverse_T = 1.0 / world_.time_scale;
+  const Eigen::Vector3d va = read(y + velocities + std::size_t(D) * a, D, inverse_T);
+  RoughKinematics k;
+  k.rolling = rolling_of<D>(a, y);
+  if (s.second >= 0) {
+    const auto b = std::size_t(s.second);
+    Eigen::Vector3d between = Eigen::Vector3d::Zero();
+    for (int i = 0; i < D; ++i)
+      between(i) = s.offset[i] + (y[std::size_t(D) * b + i] - y[std::size_t(D) * a + i]);
+    k.distance = between.norm();
+    k.normal = between / k.distance;
+    k.delta = springs_.reach[j] - k.distance;
+    k.relative = read(y + velocities + std::size_t(D) * b, D, inverse_T) - va;
+    k.rolling += rolling_of<D>(b, y);
+  } else {
+    double height = springs_.aside[std::size_t(s.aside)].height;
+    for (int i = 0; i < D; ++i) height += s.offset[i] * y[std::size_t(D) * a + i];
+    k.normal = -s.offset;
+    k.delta = springs_.reach[j] - height;
+    k.relative = -va;
+  }
+  return k;
+}
+
+template <int D>
 void MovingGroup::rhs_rough(const double* y, double* dydt) {
   const std::size_t n = members_.size(), velocities = std::size_t(D) * n;
   const RoughLayout& layout = rough_layout_;
@@ -76,45 +113,19 @@ void MovingGroup::rhs_rough(const double* y, double* dydt) {
   double* spin_rate = dydt + layout.spins;
   std::fill(acceleration, acceleration + velocities, 0.0);
   std::fill(spin_rate, spin_rate + std::size_t(layout.spin_size) * n, 0.0);
-  // r omega of member m (m/s), and a torque (N m) onto its spin's rate
-  auto turning = [&](std::size_t m) -> Eigen::Vector3d {
-    const double* spin = y + layout.spins + std::size_t(layout.spin_size) * m;
-    return D == 3 ? read(spin, 3, inverse_T) : Eigen::Vector3d(0.0, 0.0, inverse_T * spin[0]);
-  };
+  // a torque (N m) onto member m's spin's rate
   auto add_torque = [&](std::size_t m, const Eigen::Vector3d& torque) {
     double* rate = spin_rate + std::size_t(layout.spin_size) * m;
-    if (D == 3) {
-      for (int k = 0; k < 3; ++k) rate[k] += state_.spin_gain[m] * torque(k);
-    } else {
-      rate[0] += state_.spin_gain[m] * torque(2);
-    }
+    for (int k = 0; k < layout.spin_size; ++k)  // about z alone in the plane
+      rate[k] += state_.spin_gain[m] * torque(D == 3 ? k : 2);
   };
   for (std::size_t j = 0; j < springs_.list.size(); ++j) {
     const Spring& s = springs_.list[j];
     const Contact& c = contacts_[std::size_t(springs_.active[j])];
     const auto a = std::size_t(s.first);
-    const Eigen::Vector3d va = read(y + velocities + std::size_t(D) * a, D, inverse_T);
-    // n from the first body to the second (a wall: against its normal), the second's velocity
-    // less the first's, r_a w_a + r_b w_b, the normal's rate
-    Eigen::Vector3d normal, relative, rolling = turning(a), turn = Eigen::Vector3d::Zero();
-    double delta, distance = 0.0;
-    if (s.second >= 0) {
-      const auto b = std::size_t(s.second);
-      Eigen::Vector3d between = Eigen::Vector3d::Zero();
-      for (int k = 0; k < D; ++k)
-        between(k) = s.offset[k] + (y[std::size_t(D) * b + k] - y[std::size_t(D) * a + k]);
-      distance = between.norm();
-      normal = between / distance;
-      delta = springs_.reach[j] - distance;
-      relative = read(y + velocities + std::size_t(D) * b, D, inverse_T) - va;
-      rolling += turning(b);
-    } else {
-      double height = springs_.aside[std::size_t(s.aside)].height;
-      for (int k = 0; k < D; ++k) height += s.offset[k] * y[std::size_t(D) * a + k];
-      normal = -s.offset;
-      delta = springs_.reach[j] - height;
-      relative = -va;
-    }
+    const RoughKinematics contact = rough_kinematics<D>(j, y);
+    const Eigen::Vector3d &normal = contact.normal, &relative = contact.relative;
+    const double delta = contact.delta;
     double* tangential = dydt + layout.tangential + std::size_t(D) * j;
     double* stretch_rate = dydt + layout.stretches + std::size_t(D) * j;
     if (!(delta > 0.0)) {  // open: no force, the stretch held (forgotten at the commit)
@@ -126,8 +137,9 @@ void MovingGroup::rhs_rough(const double* y, double* dydt) {
     }
     const double approach = normal.dot(relative);
     const Eigen::Vector3d sliding = relative - approach * normal;
-    const Eigen::Vector3d slip = sliding + normal.cross(rolling);
-    if (s.second >= 0) turn = sliding / distance;
+    const Eigen::Vector3d slip = sliding + normal.cross(contact.rolling);
+    const Eigen::Vector3d turn =
+        s.second >= 0 ? Eigen::Vector3d(sliding / contact.distance) : Eigen::Vector3d::Zero();
     const double force = c.law.force(delta);  // e = 1 (MovingContacts)
     const Eigen::Vector3d stretch = read(y + layout.stretches + std::size_t(D) * j, D);
     double friction[3] = {0.0, 0.0, 0.0}, rate[3] = {0.0, 0.0, 0.0};
@@ -154,11 +166,12 @@ void MovingGroup::rhs_rough(const double* y, double* dydt) {
       const Eigen::Vector3d torque_b = -(radius_b - 0.5 * delta) * lever_torque;
       add_torque(a, torque_a);
       add_torque(b, torque_b);
-      power += torque_a.dot(turning(a)) / radius_a + torque_b.dot(turning(b)) / radius_b;
+      power += torque_a.dot(rolling_of<D>(a, y)) / radius_a +
+               torque_b.dot(rolling_of<D>(b, y)) / radius_b;
     } else {
       const Eigen::Vector3d torque_a = -radius_a * lever_torque;
       add_torque(a, torque_a);
-      power += torque_a.dot(turning(a)) / radius_a;
+      power += torque_a.dot(rolling_of<D>(a, y)) / radius_a;
     }
     dydt[2 * velocities + j] = impulse_rate * force;
     dydt[layout.works + j] = -work_rate * power;
