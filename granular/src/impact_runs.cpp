@@ -284,6 +284,11 @@ void assemble(const CompliantEngine& engine, const ContactModel& model, Complian
   for (Eigen::Index b = 0; b < model.body_count(); ++b)
     impact.velocity_after.segment(b * d, d) = engine.velocity(b).head(d);
   result.velocity = model.W.transpose() * impact.velocity_after;
+  if (engine.has_positions()) {
+    impact.position_after.resize(model.mass.size());
+    for (Eigen::Index b = 0; b < model.body_count(); ++b)
+      impact.position_after.segment(b * d, d) = engine.position(b).head(d);
+  }
   if (model.rotation) add_rotation(engine, model, impact);
   impact.impact_times = {span.start};
   impact.velocities_before = {model.velocity};
@@ -299,15 +304,6 @@ CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
                                 const CompliantSpec& spec, const RecordSpec& record,
                                 int frame_every, const RunLimits& limits) {
-  if (spec.geometry == Geometry::moving && model.beads)
-    for (const numerics::ContactLaw& law : model.laws)
-      if (law.friction != model.beads->shape.friction)
-        throw InvalidInput(invalid_value_message(
-            "contact.pairs' friction", law.friction,
-            "the scene's contact.friction (" + to_text(model.beads->shape.friction) +
-                ") with the compliant method in the moving geometry, whose contacts all rub "
-                "alike so far; compliant.geometry \"frozen\" and the LZB method take friction "
-                "per pair"));
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
   RecordingBudget budget = compliant_budget(model, record, frame_every, limits);

@@ -30,7 +30,7 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
                                MovingContactsOptions options,
                                const std::vector<Eigen::Vector3d>& angular_velocity)
     : world_(std::make_unique<MovingWorld>(geometry, options)) {
-  world_->rough = geometry.shape.friction > 0.0;
+  world_->rough = geometry.rough();
   if (world_->rough && geometry.shape.effective_restitution() < 1.0)
     throw InvalidInput(invalid_value_message(
         "contact.restitution", geometry.shape.restitution,

@@ -353,6 +353,11 @@ class PackingBuilder {
     }
     beads.shape = scene_.contact.law(0.0);
     beads.fixed_stiffness = scene_.contact.stiffness.value_or(0.0);
+    if (!scene_.contact.pairs.empty())
+      beads.friction_between = [contact = scene_.contact](const granular::Material& a,
+                                                          const granular::Material& b) {
+        return contact.friction_of(a, b);
+      };
     for (const PackingContact& c : model_.contacts)
       beads.closed.emplace_back(std::int32_t(c.first),
                                 c.second >= 0 ? std::int32_t(c.second) : std::int32_t(-1 - c.wall));
@@ -466,11 +471,15 @@ Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity) {
 }
 
 Vector angular_momentum(const PackingModel& model, const Eigen::VectorXd& velocity,
-                        const Eigen::VectorXd& angular_velocity, double time) {
+                        const Eigen::VectorXd& angular_velocity, double time,
+                        const Eigen::VectorXd& position) {
   const int d = model.dimension;
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   for (Eigen::Index b = 0; b < model.body_count(); ++b) {
-    const Vector at = model.position.row(b).transpose() + model.of(model.velocity, b) * time;
+    const Vector at =
+        position.size() > 0
+            ? model.of(position, b)
+            : Vector(model.position.row(b).transpose() + model.of(model.velocity, b) * time);
     total += model.mass(d * b) * point_of(at).cross(point_of(model.of(velocity, b)));
     if (angular_velocity.size() == 0) continue;
     const double inertia = model.rotation->inertia(b);

@@ -72,15 +72,17 @@ nlohmann::ordered_json per_body(const PackingModel& model, const Eigen::VectorXd
   return list;
 }
 
-// About the origin, with the bodies where the first impact found them (packing_model.hpp).
+// About the origin: before, with the bodies where the first impact found them; after, where the
+// run left them if it moved them (packing_model.hpp).
 nlohmann::ordered_json angular_momentum_json(const PackingModel& model,
                                              const granular::ImpactOutcome& impact) {
   const Eigen::VectorXd before =
       model.rotation ? model.rotation->angular_velocity : Eigen::VectorXd();
   const double t = impact.impact_time;
   return {{"before", components(angular_momentum(model, model.velocity, before, t))},
-          {"after", components(angular_momentum(model, impact.velocity_after,
-                                                impact.angular_velocity_after, t))}};
+          {"after",
+           components(angular_momentum(model, impact.velocity_after, impact.angular_velocity_after,
+                                       t, impact.position_after))}};
 }
 
 std::string method_name(const PackingScene& scene, const granular::SceneRun& run) {
@@ -302,7 +304,8 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
         bracketed(angular_momentum(model, model.velocity, model.rotation->angular_velocity, t),
                   "%.9g")
             .c_str(),
-        bracketed(angular_momentum(model, impact.velocity_after, impact.angular_velocity_after, t),
+        bracketed(angular_momentum(model, impact.velocity_after, impact.angular_velocity_after, t,
+                                   impact.position_after),
                   "%.9g")
             .c_str());
     report += text;

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "packing_runs.hpp"
 
@@ -28,8 +30,8 @@ Eigen::VectorXd lammps_spins(const std::string& name) {
 }
 
 // Every body's v and r omega within RMS 1e-7 of V of LAMMPS's (whose own halving moves them by
-// RMS 2e-8), the run's energy ledger balanced: the kinetic energy lost is what the contacts
-// hold and took, the slip's share included.
+// RMS 2e-8); its momentum and its angular momentum about the origin (the bodies where the run
+// left them, as the summary takes it) kept to 1e-12.
 TEST(PackingMindlin, HexagonalPackingMeetsLammps) {
   const PackingCase moving = run_packing(
       lattice_scene("hexagonal", 10, 10, "[0, 5]", "[0, 1]",
@@ -53,6 +55,64 @@ TEST(PackingMindlin, HexagonalPackingMeetsLammps) {
       "V\n",
       rms, worst);
   EXPECT_LT(rms, 1e-7);
+
+  const packings::PackingModel& model = moving.model;
+  const granular::ImpactOutcome& impact = moving.run.impact;
+  ASSERT_EQ(impact.position_after.size(), v.size());
+  const double t = impact.impact_time;
+  const Eigen::VectorXd L0 =
+      packings::angular_momentum(model, model.velocity, model.rotation->angular_velocity, t);
+  const Eigen::VectorXd L1 = packings::angular_momentum(model, v, w, t, impact.position_after);
+  const Eigen::VectorXd p0 = packings::momentum(model, model.velocity);
+  const double momentum_drift = (packings::momentum(model, v) - p0).norm() / p0.norm();
+  const double angular_drift = (L1 - L0).norm() / L0.norm();
+  std::printf("momentum kept to %.1e, angular momentum about the origin to %.1e\n", momentum_drift,
+              angular_drift);
+  EXPECT_LT(momentum_drift, 1e-12);
+  EXPECT_LT(angular_drift, 1e-12);
+}
+
+// contact.pairs in the moving geometry: a glass bead sent sliding along a felt floor (mu 0.8)
+// and a steel striker off-centre on a glass bead far from it (mu 0.2), in one scene whose
+// contact.friction (0.05) neither takes; the two rubbing contacts never meet, so each body leaves
+// as in the same scene with contact.friction its own pair's mu for every contact.
+TEST(PackingMindlin, FrictionPerPairOfMaterials) {
+  const auto directory = std::filesystem::temp_directory_path() / "mimpact_test_mindlin_pairs";
+  std::filesystem::create_directories(directory);
+  std::ofstream(directory / "pair.csv")
+      << "x,y,radius,vx,vy,wz\n0,0.005,0.005,0.6,-0.8,0\n0.1,0.05,0.005,0,0,0\n";
+  auto scene = [&](const std::string& contact) {
+    return R"({"beads": {"file": "pair.csv", "material": {"name": "glass", "density": 2500,
+        "young": 6e10, "poisson": 0.2}}, "walls": [{"side": "bottom", "material": {"name":
+        "felt", "density": 1000, "young": 1e9, "poisson": 0.3}}], "strikers": [{"target": [1],
+        "radius": 0.005, "velocity": [1, 0], "offset": 0.004, "gap": 0.001, "material": {"name":
+        "steel", "density": 7780, "young": 2.03e11, "poisson": 0.3}}], "contact": )" +
+           contact + R"(, "method": "compliant", "compliant": {"tolerance": 1e-10,
+        "end_time": 2e-3}, "configuration_check": {"enabled": false}})";
+  };
+  const PackingCase pairs = run_packing(
+      scene(R"({"friction": 0.05, "pairs": [{"materials": ["felt", "glass"], "friction": 0.8},
+          {"materials": ["glass", "steel"], "friction": 0.2}]})"),
+      directory.string());
+  const PackingCase felt = run_packing(scene(R"({"friction": 0.8})"), directory.string());
+  const PackingCase steel = run_packing(scene(R"({"friction": 0.2})"), directory.string());
+  // (v, r omega) of body b against the same body of run `alone`, of V = 1 m/s
+  auto difference = [&](Eigen::Index b, const PackingCase& alone) {
+    const granular::ImpactOutcome &x = pairs.run.impact, &y = alone.run.impact;
+    return std::max(
+        (x.velocity_after.segment<2>(2 * b) - y.velocity_after.segment<2>(2 * b)).norm(),
+        0.005 * std::abs(x.angular_velocity_after(b) - y.angular_velocity_after(b)));
+  };
+  const double worst = std::max({difference(0, felt), difference(1, steel), difference(2, steel)});
+  // and the scene's own mu would have left the bead on felt otherwise
+  const PackingCase slick = run_packing(scene(R"({"friction": 0.05})"), directory.string());
+  const double apart = difference(0, slick);
+  std::printf(
+      "per-pair mu in the moving geometry: each body as with its pair's mu everywhere to %.2e "
+      "of V, %.3f m/s from contact.friction's\n",
+      worst, apart);
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(apart, 0.01);
 }
 
 }  // namespace

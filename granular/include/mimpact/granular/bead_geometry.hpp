@@ -1,7 +1,9 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -36,8 +38,31 @@ struct BeadGeometry {
   // the contacts closed at the start, as the contact model numbers them: two bodies, or a body
   // and -1 - wall
   std::vector<std::pair<std::int32_t, std::int32_t>> closed;
+  // Coulomb's mu of a contact of two materials where it depends on the pair (a scene's
+  // contact.pairs); empty: shape.friction for every contact
+  std::function<double(const Material&, const Material&)> friction_between;
 
   Eigen::Index body_count() const { return radius.size(); }
+  double friction(const Material& a, const Material& b) const {
+    return friction_between ? friction_between(a, b) : shape.friction;
+  }
+  // whether any contact rubs: mu > 0 between two of the bodies' materials or a body's and a
+  // wall's
+  bool rough() const {
+    if (!friction_between) return shape.friction > 0.0;
+    std::vector<const Material*> kinds;  // one of each name
+    for (const Material& m : material)
+      if (std::none_of(kinds.begin(), kinds.end(),
+                       [&](const Material* k) { return k->name == m.name; }))
+        kinds.push_back(&m);
+    for (std::size_t i = 0; i < kinds.size(); ++i) {
+      for (std::size_t k = i; k < kinds.size(); ++k)
+        if (friction(*kinds[i], *kinds[k]) > 0.0) return true;
+      for (const Material& wall : wall_material)
+        if (friction(*kinds[i], wall) > 0.0) return true;
+    }
+    return false;
+  }
   // the law of bodies i and k, and of body i and wall w: `shape` with their Hertz stiffness and,
   // with friction, Mindlin's tangential stiffness ratio
   numerics::ContactLaw bead_law(Eigen::Index i, Eigen::Index k) const {
@@ -45,6 +70,7 @@ struct BeadGeometry {
     law.stiffness = fixed_stiffness > 0.0 ? fixed_stiffness
                                           : hertz_stiffness(radius(i), material[std::size_t(i)],
                                                             radius(k), material[std::size_t(k)]);
+    law.friction = friction(material[std::size_t(i)], material[std::size_t(k)]);
     if (law.friction > 0.0)
       law.tangential_stiffness_ratio =
           mindlin_ratio(material[std::size_t(i)], material[std::size_t(k)]);
@@ -56,6 +82,7 @@ struct BeadGeometry {
         fixed_stiffness > 0.0
             ? fixed_stiffness
             : hertz_stiffness_wall(radius(i), material[std::size_t(i)], wall_material[w]);
+    law.friction = friction(material[std::size_t(i)], wall_material[w]);
     if (law.friction > 0.0)
       law.tangential_stiffness_ratio = mindlin_ratio(material[std::size_t(i)], wall_material[w]);
     return law;

@@ -20,6 +20,9 @@ struct ImpactOutcome {
   Eigen::VectorXd velocity_after;  // per coordinate (m/s), after the last impact
   // rad/s, components per body, after the last impact: when the bodies turn (else empty)
   Eigen::VectorXd angular_velocity_after;
+  // per coordinate (m): where a run that moves the bodies (the compliant contacts in the moving
+  // geometry) left them; empty where the impact finds them fixed
+  Eigen::VectorXd position_after;
   double impact_time = 0.0;  // s, when the first impact began
   double wall_time = 0.0;    // s spent in the impact computations
   // compliant method, free scene: compliant.end_time came with contacts still closed, so the

@@ -65,10 +65,11 @@ Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity);
 
 // Total angular momentum (N m s) about the origin, sum of m x x v + I omega, of the bodies moving
 // with `velocity` and turning at `angular_velocity` (empty: not turning) where they are at
-// `time` (s), each flown from its start at its velocity before the impact: [Lz] in the plane,
-// [Lx, Ly, Lz] in space.
+// `time` (s), each flown from its start at its velocity before the impact, or at `position` (m,
+// per coordinate) where given: [Lz] in the plane, [Lx, Ly, Lz] in space.
 Vector angular_momentum(const PackingModel& model, const Eigen::VectorXd& velocity,
-                        const Eigen::VectorXd& angular_velocity, double time);
+                        const Eigen::VectorXd& angular_velocity, double time,
+                        const Eigen::VectorXd& position = Eigen::VectorXd());
 
 // The body of bead (row, column) of a planar lattice, (layer, row, column) of a three-dimensional
 // one, or bead `index` of a bead list.
