@@ -10,7 +10,10 @@
 // parsing and the lattice's building are not counted), LAMMPS's its own "Loop time" (its
 // start-up, neighbour lists included, is not counted); manual time for both; a
 // run under a second is repeated, three in all, and the least time kept (least_time).
-// When /usr/bin/lmp is absent the LAMMPS runs are skipped with a message.
+// When /usr/bin/lmp is absent the LAMMPS runs are skipped with a message. A scene with friction
+// (scene 5) gives both codes Mindlin's tangential spring under Coulomb's cap (LAMMPS's
+// `tangential mindlin`, kt = 8 G* of the material), its beads spinning; its errors take the
+// larger of a bead's velocity's and r times its spin's (docs/friction.md, section 3).
 // bench/packing_work_precision.py runs this program and writes docs/performance_packings.md.
 //
 // Names: BM_PackingMimpact/<scene>/<tolerance> (1e-1, 3e-2, 1e-2, ... 1e-9: two a decade, so
@@ -37,9 +40,10 @@ using namespace mimpact;
 
 struct Scene {
   const char* name;
-  const char* lattice;  // the scene's "lattice"
-  const char* target;   // of the striker, which flies along +y (planar) or +z
-  double end_time;      // s: just after the front has crossed
+  const char* lattice;    // the scene's "lattice"
+  const char* target;     // of the striker, which flies along +y (planar) or +z
+  double end_time;        // s: just after the front has crossed
+  double friction = 0.0;  // mu: with Mindlin's tangential spring (LAMMPS's tangential mindlin)
 };
 
 const Scene kScenes[] = {
@@ -55,25 +59,33 @@ const Scene kScenes[] = {
     // a smaller crystal, for the cost against size in space (issue 24, item c)
     {"fcc 10 x 10 x 10",
      R"({"type": "fcc", "layers": 10, "rows": 10, "columns": 10, "radius": 0.005})", "[0, 5, 5]",
-     2.5e-4}};
-constexpr double kLargestStep = 1.6e-6;  // s, LAMMPS's coarsest
+     2.5e-4},
+    // friction in the moving geometry (issue 46): the beads spin, their contacts stick and slip
+    {"hexagonal 32 x 32, mu 0.3",
+     R"({"type": "hexagonal", "rows": 32, "columns": 32, "radius": 0.005})", "[0, 16]", 1e-3, 0.3}};
+constexpr double kYoung = 203e9, kPoisson = 0.3;  // Pa, steel
+constexpr double kLargestStep = 1.6e-6;           // s, LAMMPS's coarsest
 constexpr double kReferenceTolerance = 1e-10;
 
 std::string scene_text(const Scene& scene, double tolerance) {
   const bool planar = std::string(scene.lattice).find("hexagonal") != std::string::npos;
-  char compliant[160];
+  char compliant[160], contact[80] = "";
   std::snprintf(compliant, sizeof compliant,
                 R"("method": "compliant", "compliant": {"tolerance": %.17g, "end_time": %.17g})",
                 tolerance, scene.end_time);
+  if (scene.friction > 0.0)
+    std::snprintf(contact, sizeof contact, R"("contact": {"restitution": 1, "friction": %.17g}, )",
+                  scene.friction);
   return std::string(R"({"material": {"density": 7780, "young": 203e9, "poisson": 0.3},)") +
          R"("lattice": )" + scene.lattice + R"(, "strikers": [{"target": )" + scene.target +
          R"(, "radius": 0.005, "velocity": )" + (planar ? "[0, 1]" : "[0, 0, 1]") + "}], " +
-         compliant + "}";
+         contact + compliant + "}";
 }
 
 struct Run {
   packings::PackingModel model;
   Eigen::VectorXd velocity;  // per coordinate, at the end time
+  Eigen::VectorXd spin;      // rad/s, per body (about z in the plane), with friction
   double run_time = 0.0;     // s: the run's wall time (lists and integration)
   std::int64_t steps = 0;
   granular::MovingContactsStats work;
@@ -82,9 +94,10 @@ struct Run {
 Run run_mimpact(const Scene& scene, double tolerance) {
   const packings::PackingScene parsed =
       packings::parse_packing_scene(scene_text(scene, tolerance), scene.name);
-  Run run{packings::build_packing_model(parsed), {}, 0};
+  Run run{packings::build_packing_model(parsed)};
   const granular::SceneRun outcome = packings::run_packing_scene(parsed, run.model);
   run.velocity = outcome.impact.velocity_after;
+  run.spin = outcome.impact.angular_velocity_after;
   run.run_time = outcome.impact.wall_time;
   run.steps = outcome.impact.result.steps;
   run.work = outcome.moving;
@@ -99,13 +112,16 @@ const Run& reference(int scene) {
   return found->second;
 }
 
-// RMS and worst of |v - v_ref| / V over the bodies
-void set_errors(benchmark::State& state, const packings::PackingModel& model,
-                const Eigen::VectorXd& velocity, const Eigen::VectorXd& reference_velocity) {
+// RMS and worst of |v - v_ref| / V over the bodies; where they spin, of the larger of that and
+// r |w - w_ref| / V (in the plane)
+void set_errors(benchmark::State& state, const packings::PackingModel& model, const Run& run,
+                const Run& reference) {
   const int d = model.dimension;
+  const bool spins = run.spin.size() == model.body_count() && d == 2;
   double sum = 0.0, worst = 0.0;
   for (Eigen::Index b = 0; b < model.body_count(); ++b) {
-    const double error = (velocity.segment(d * b, d) - reference_velocity.segment(d * b, d)).norm();
+    double error = (run.velocity.segment(d * b, d) - reference.velocity.segment(d * b, d)).norm();
+    if (spins) error = std::max(error, model.radius(b) * std::abs(run.spin(b) - reference.spin(b)));
     sum += error * error;
     worst = std::max(worst, error);
   }
@@ -134,7 +150,7 @@ void BM_PackingMimpact(benchmark::State& state, int scene, double tolerance) {
       run = run_mimpact(kScenes[scene], tolerance);
       return run.run_time;
     }));
-  set_errors(state, run.model, run.velocity, truth.velocity);
+  set_errors(state, run.model, run, truth);
   state.counters["steps"] = double(run.steps);
   // what the cost is to follow (issue 24, item c): the contacts that carried force and the run's
   // length, and the steps its bodies took
@@ -145,9 +161,9 @@ void BM_PackingMimpact(benchmark::State& state, int scene, double tolerance) {
 }
 
 // LAMMPS on the model's bodies, through bench/peers/lammps_packing.py: its loop time (s), or a
-// negative number when it did not run; the final velocities per coordinate.
-double run_lammps(const packings::PackingModel& model, const Scene& scene, double step,
-                  Eigen::VectorXd& velocity) {
+// negative number when it did not run; the final velocities per coordinate, and spins.
+double run_lammps(const packings::PackingModel& model, const Scene& scene, double step, Run& out) {
+  Eigen::VectorXd& velocity = out.velocity;
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("mimpact_lammps_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -163,12 +179,17 @@ double run_lammps(const packings::PackingModel& model, const Scene& scene, doubl
       bodies << "\n";
     }
   }
-  char command[1024];
+  char friction[256] = "";
+  if (scene.friction > 0.0)
+    std::snprintf(friction, sizeof friction,
+                  " --friction %.17g --young %.17g --poisson %.17g --out-spins %s", scene.friction,
+                  kYoung, kPoisson, (dir / "w.csv").c_str());
+  char command[1400];
   std::snprintf(command, sizeof command,
                 "/usr/bin/python3 %s/bench/peers/lammps_packing.py --bodies %s --dimension %d "
-                "--hertz-k %.17g --dt %.17g --end-time %.17g --out %s",
+                "--hertz-k %.17g --dt %.17g --end-time %.17g --out %s%s",
                 MIMPACT_SOURCE_DIR, (dir / "bodies.csv").c_str(), d, model.laws.front().stiffness,
-                step, scene.end_time, (dir / "v.csv").c_str());
+                step, scene.end_time, (dir / "v.csv").c_str(), friction);
   FILE* pipe = popen(command, "r");
   if (!pipe) return -1.0;
   std::string output;
@@ -188,6 +209,13 @@ double run_lammps(const packings::PackingModel& model, const Scene& scene, doubl
     for (int k = 0; k < 3 && std::getline(cells, cell, ','); ++k)
       if (k < d) velocity(d * b + k) = std::stod(cell);
   }
+  if (scene.friction > 0.0) {
+    std::ifstream spins(dir / "w.csv");
+    std::getline(spins, line);  // wx,wy,wz
+    out.spin.resize(model.body_count());
+    for (Eigen::Index b = 0; b < model.body_count() && std::getline(spins, line); ++b)
+      out.spin(b) = std::stod(line.substr(line.rfind(',') + 1));  // about z
+  }
   fs::remove_all(dir);
   return loop_time;
 }
@@ -204,11 +232,11 @@ void BM_PackingLammps(benchmark::State& state, int scene, int halvings) {
       std::ceil(kScenes[scene].end_time * std::pow(2.0, double(halvings)) / kLargestStep);
   const double step = kScenes[scene].end_time / steps;
   const Run& truth = reference(scene);
-  Eigen::VectorXd velocity;
+  Run run;
   for (auto _ : state) {
     bool failed = false;
     const double loop_time = least_time([&] {
-      const double time = run_lammps(truth.model, kScenes[scene], step, velocity);
+      const double time = run_lammps(truth.model, kScenes[scene], step, run);
       failed = failed || time < 0.0;
       return failed ? 2.0 : time;  // no repetition after a failure
     });
@@ -220,7 +248,7 @@ void BM_PackingLammps(benchmark::State& state, int scene, int halvings) {
     }
     state.SetIterationTime(loop_time);
   }
-  set_errors(state, truth.model, velocity, truth.velocity);
+  set_errors(state, truth.model, run, truth);
   state.counters["dt"] = step;
   state.SetLabel(kScenes[scene].name);
 }

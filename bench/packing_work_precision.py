@@ -1,15 +1,17 @@
 #!/usr/bin/python3
-"""Runs bench_packing_peers (built in Release) once and writes docs/performance_packings.md and
-docs/performance/packings_work_precision.png: time against error for mimpact's compliant
-contacts in the moving geometry and for LAMMPS, on the same packings, in one benchmark run.
-Every number of the page comes from that run.
+"""Runs bench_packing_peers (built in Release) once and writes docs/PAGE.md and
+docs/performance/PAGE.png (PAGE: performance_packings by default): time against error for
+mimpact's compliant contacts in the moving geometry and for LAMMPS, on the same packings, in one
+benchmark run. Every number of the page comes from that run.
 
     /usr/bin/python3 bench/packing_work_precision.py --bench build/release/bench/bench_packing_peers \
-        [--scenes 0,1] [--install-lammps]
+        [--scenes 0,1] [--page performance_packings] [--install-lammps]
 
 Scenes (bench_packing_peers.cpp): 0 hexagonal 32 x 32 to 1 ms, 1 hexagonal 56 x 56 to 1.75 ms,
-2 hexagonal 100 x 100 to 3.1 ms, 3 FCC 20 x 20 x 20 to 0.5 ms, 4 FCC 10 x 10 x 10 to 0.25 ms. Without LAMMPS (/usr/bin/lmp) its
-runs are skipped with a message, and the page says so; --install-lammps installs Debian's.
+2 hexagonal 100 x 100 to 3.1 ms, 3 FCC 20 x 20 x 20 to 0.5 ms, 4 FCC 10 x 10 x 10 to 0.25 ms,
+5 hexagonal 32 x 32 with friction (mu 0.3, Mindlin's spring) to 1 ms (docs/performance_friction.md
+is --scenes 5 --page performance_friction). Without LAMMPS (/usr/bin/lmp) its runs are skipped
+with a message, and the page says so; --install-lammps installs Debian's.
 """
 import argparse
 import json
@@ -185,7 +187,11 @@ def page(context, results, skipped, png, command):
              "its run's (`wall_time` in summary.json: neighbour lists and integration; the "
              "scene's parsing and the lattice's building excluded), LAMMPS's its own loop "
              "time (its start-up, neighbour lists included, excluded); each the least "
-             "of three runs where a run takes under a second.", "",
+             "of three runs where a run takes under a second." +
+             (" A scene with μ gives both codes Mindlin's tangential spring under Coulomb's "
+              "cap (LAMMPS's `tangential mindlin`, k_t = 8 G* a), the beads spinning; its "
+              "errors take the larger of a bead's velocity's and r times its spin's."
+              if any("mu" in scene for scene in results) else ""), "",
              f"![time against error](performance/{png.name})", ""]
     if skipped:
         lines += ["Runs that did not finish: " + "; ".join(skipped) + ".", ""]
@@ -211,6 +217,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bench", required=True)
     parser.add_argument("--scenes", default="0", help="comma-separated scene numbers")
+    parser.add_argument("--page", default="performance_packings",
+                        help="the page's name: docs/PAGE.md, docs/performance/PAGE.png")
     parser.add_argument("--install-lammps", action="store_true")
     parser.add_argument("--reuse", action="store_true", help="redraw from the last run's JSON")
     args = parser.parse_args()
@@ -219,18 +227,21 @@ def main():
                        check=True)
     if not os.path.exists("/usr/bin/lmp"):
         print("LAMMPS is not installed: its runs are skipped (--install-lammps installs it)")
-    out = ROOT / "build" / "packing_work_precision.json"
+    out = ROOT / "build" / f"{args.page}.json"
     if not args.reuse:
         run(args.bench, [int(s) for s in args.scenes.split(",")], out)
     context, results, skipped = parse(out)
-    png = ROOT / "docs" / "performance" / "packings_work_precision.png"
+    png = ROOT / "docs" / "performance" / ("packings_work_precision.png"
+                                           if args.page == "performance_packings"
+                                           else f"{args.page}.png")
     png.parent.mkdir(exist_ok=True)
     figure(results, png)
     command = "/usr/bin/python3 bench/packing_work_precision.py --bench " \
-              f"build/release/bench/bench_packing_peers --scenes {args.scenes}"
-    (ROOT / "docs" / "performance_packings.md").write_text(
+              f"build/release/bench/bench_packing_peers --scenes {args.scenes}" + \
+              ("" if args.page == "performance_packings" else f" --page {args.page}")
+    (ROOT / "docs" / f"{args.page}.md").write_text(
         page(context, results, skipped, png, command) + "\n")
-    print(ROOT / "docs" / "performance_packings.md")
+    print(ROOT / "docs" / f"{args.page}.md")
 
 
 if __name__ == "__main__":

@@ -243,8 +243,8 @@ void MovingGroup::member_state(std::size_t slot, const double* y, Eigen::Vector3
 
 void MovingGroup::rhs(const double* y, double* dydt) {
   if (world_.rough) {
-    if (dimension_ == 3) return rhs_rough<3>(y, dydt);
-    return rhs_rough<2>(y, dydt);
+    if (dimension_ == 3) return rhs_spatial_rough(y, dydt);
+    return rhs_planar_rough(y, dydt);
   }
   if (dimension_ == 3) return rhs_in<3>(y, dydt);
   rhs_in<2>(y, dydt);
@@ -330,7 +330,13 @@ void MovingGroup::move_to(double t) {
   const std::size_t n = members_.size();
   settle_histories(t);
   if (rough_) {
-    rough_->state_at(t, y_);
+    if (t >= rough_->time()) {
+      y_ = rough_->state();  // amended
+    } else {
+      rough_->state_at(t, y_);
+      const double start = rough_->time() - rough_->last_step();
+      if (dimension_ == 2) amend_rough((t - start) / rough_->last_step(), y_);
+    }
     move_rough();
   } else {
     dense_->state_at(t, y_);
@@ -383,10 +389,9 @@ void MovingGroup::handle(const Event& event) {
 void MovingGroup::take_step() {
   fresh_ = false;
   if (rough_) {
-    rough_->step([this](const std::vector<double>& y, std::vector<double>& dydt, double) {
-      rhs(y.data(), dydt.data());
-    });
+    rough_->step(RoughMotion{*this});
     last_step_ = rough_->last_step();
+    if (dimension_ == 2) amend_rough_step();
   } else {
     dense_->step(Motion{*this});
     last_step_ = dense_->last_step();

@@ -6,6 +6,7 @@
 // (moving_world.hpp).
 
 #include <Eigen/Dense>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -140,6 +141,9 @@ class MovingGroup {
   struct RoughLayout {
     std::size_t spins = 0, tangential = 0, stretches = 0, works = 0;  // first slots
     int spin_size = 1;
+    // a spring's stretch: in the plane its one component along the tangent (-n_y, n_x), which
+    // turns with the normal; in space three
+    std::size_t stretch_size = 1;
   };
   // A rough spring's contact along the state y: the normal n from its first body to its second
   // (a wall: against the wall's normal), their distance (m; 0 at a wall) and overlap (m), the
@@ -150,12 +154,70 @@ class MovingGroup {
   };
   template <int D>
   RoughKinematics rough_kinematics(std::size_t spring, const double* y) const;
+  // the tangent (-n_y, n_x) of a planar contact
+  static Eigen::Vector3d planar_tangent(const RoughKinematics& k) {
+    return {-k.normal.y(), k.normal.x(), 0.0};
+  }
   template <int D>
   Eigen::Vector3d rolling_of(std::size_t member, const double* y) const;  // r omega (m/s)
-  template <int D>
-  void rhs_rough(const double* y, double* dydt);
+  // What both rough right-hand sides add to, zeroed (x' = w / T written): the members'
+  // accelerations and spins' rates, and the scales of the state's units.
+  struct RoughRates {
+    double *acceleration, *spin_rate;
+    double inverse_T, impulse_rate, work_rate;  // 1 / T, T / m_s, T / (m_s speed_bound)
+  };
+  RoughRates start_rough_rhs(const double* y, double* dydt) const;
+  void rhs_planar_rough(const double* y, double* dydt);
+  void rhs_spatial_rough(const double* y, double* dydt);
   void restart_rough();  // y_ extended past the impulses, from the members and contacts
-  void move_rough();     // the spins, tangential impulses and stretches of y_ into them
+  // The regimes a rough spring went through in the right-hand side's calls since the last step
+  // (bits; numerics::mindlin::ByState's shifted above kOpen), and its last.
+  enum RegimeBit : std::uint8_t { kOpen = 1, kUnderCap = 2, kOnCap = 4, kSlipping = 8 };
+  void note_regime(std::size_t spring, std::uint8_t regime) {
+    springs_.regimes[spring] |= regime;
+    springs_.last_regime[spring] = regime;
+  }
+  // After a step of a planar rough group (moving_group_amend.cpp): each spring whose regime
+  // changed within it, its stretch's rate jumping, is integrated again along the step's
+  // continuous extension with its switches located (numerics::mindlin::PlanarPlay), and the
+  // step's end amended by what the stages missed of its tangential impulse, its torques, its
+  // slip work and its stretch.
+  void amend_rough_step();
+  // The same amendment, at the share `share` of the last step, of y there (the pair's own
+  // dense output): the springs amended at its end, integrated to `share`.
+  void amend_rough(double share, std::vector<double>& y) const;
+  // Spring j's part: its missed impulse into y (the kinetic energy it gives booked as slip
+  // work), and what that impulse would have moved its bodies by over the step into `moved`
+  // (per member: the displacement, m, and r times the turn, m); returns that moment's size.
+  double amend_spring(std::size_t spring, double share, std::vector<double>& y,
+                      std::vector<double>& moved) const;
+  // The stretches of the springs that slipped throughout the last step put on their caps.
+  void put_on_caps(std::vector<double>& y) const;
+  // The bodies moved, and the stretches of the sticking springs on them with the slip that
+  // makes; returns the energy (J) their normal springs gained.
+  double move_bodies(const std::vector<double>& moved, std::vector<double>& y) const;
+  double kinetic_energy(std::size_t member, const std::vector<double>& y) const;  // J, with spin
+  double normal_energy(std::size_t spring, const std::vector<double>& y) const;   // J
+  // Takes out of a step's error estimate what the springs that switch in it (so far: in the
+  // step's attempts) contributed through their tangential impulses: amend_rough_step replaces
+  // those by its own integration.
+  void adjust_rough_error(std::vector<double>& error) const;
+  static bool switching(std::uint8_t seen) {
+    return (seen & (seen - 1)) != 0 || (seen & kOnCap) != 0;  // two regimes or more, or capped
+  }
+  // the lever arms (m) of spring j's tangential force's torques on its two bodies at overlap
+  // delta (LAMMPS's: r - delta/2 between beads, r at a wall)
+  std::pair<double, double> levers(std::size_t spring, double delta) const;
+  // A rough group's motion as the Dormand-Prince pair reads it: the right-hand side, and the
+  // error estimate without the switching springs' tangential impulses.
+  struct RoughMotion {
+    MovingGroup& group;
+    void operator()(const std::vector<double>& y, std::vector<double>& dydt, double) {
+      group.rhs(y.data(), dydt.data());
+    }
+    void adjust_error(std::vector<double>& error) const { group.adjust_rough_error(error); }
+  };
+  void move_rough();  // the spins, tangential impulses and stretches of y_ into them
   double stepper_time() const { return rough_ ? rough_->time() : dense_->time(); }
   const std::vector<double>& stepper_state() const {
     return rough_ ? rough_->state() : dense_->state();
@@ -232,9 +294,12 @@ class MovingGroup {
     std::vector<std::int32_t> active;  // of contacts_: those in the right-hand side
     std::vector<Spring> list;          // the same, as the right-hand side reads them
     std::vector<SpringAside> aside;
-    std::vector<double> reach, stiffness;        // m, N / m^(3/2): by the springs' order
-    std::vector<Peak> peaks;                     // by the springs' order
-    std::vector<HistoryChange> history_changes;  // of the step just taken, by time
+    std::vector<double> reach, stiffness;            // m, N / m^(3/2): by the springs' order
+    std::vector<Peak> peaks;                         // by the springs' order
+    std::vector<HistoryChange> history_changes;      // of the step just taken, by time
+    std::vector<std::uint8_t> regimes, last_regime;  // rough springs (note_regime)
+    std::vector<std::size_t> amended;                // rough springs that switched in the last step
+    std::vector<std::size_t> slipping;               // and those that slipped throughout it
   };
   // The event search: every entry's gap and rate at the current segment's ends (the start kept
   // from the segment before, at sampled_at: a segment's end is the next one's start), and the
@@ -262,6 +327,10 @@ class MovingGroup {
   std::unique_ptr<numerics::RungeKuttaNystrom> dense_;
   std::unique_ptr<numerics::DenseOutput> rough_;  // in place of dense_ where world_.rough
   RoughLayout rough_layout_;
+  // the state's first RoughLayout::tangential components (positions, velocities, impulses and
+  // spins) at the shares 0, 1/4, 1/2, 3/4, 1 of the last step, as the pair's dense output gives
+  // them (amend_rough)
+  std::array<std::vector<double>, 5> rough_nodes_;
   std::vector<double> y_, probe_;
   double last_step_ = 0.0;
   bool fresh_ = true;  // restarted, no step taken since

@@ -9,6 +9,11 @@ namespace mimpact::granular {
 
 namespace {
 
+// A planar spring within this share below its cap, pushed outward, slips in the stages
+// (numerics::mindlin::Terms::cap_band); one that slips throughout a step is put on its cap at
+// the step's end (MovingGroup::put_on_caps).
+constexpr double kCapBand = 1e-3;
+
 Eigen::Vector3d read(const double* y, int count, double scale = 1.0) {
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
   for (int k = 0; k < count; ++k) x(k) = scale * y[k];
@@ -22,11 +27,16 @@ void MovingGroup::restart_rough() {
   const std::size_t n = members_.size(), springs = springs_.list.size();
   RoughLayout& layout = rough_layout_;
   layout.spin_size = dimension_ == 3 ? 3 : 1;
+  layout.stretch_size = dimension_ == 3 ? 3 : 1;
   layout.spins = 2 * d * n + springs;
   layout.tangential = layout.spins + std::size_t(layout.spin_size) * n;
   layout.stretches = layout.tangential + d * springs;
-  layout.works = layout.stretches + d * springs;
+  layout.works = layout.stretches + layout.stretch_size * springs;
   y_.resize(layout.works + springs, 0.0);
+  springs_.regimes.assign(springs, 0);
+  springs_.last_regime.assign(springs, 0);
+  springs_.amended.clear();
+  springs_.slipping.clear();
   state_.spin_gain.resize(n);
   const double T = world_.time_scale;
   for (std::size_t m = 0; m < n; ++m) {
@@ -39,6 +49,10 @@ void MovingGroup::restart_rough() {
   }
   for (std::size_t j = 0; j < springs; ++j) {
     const Contact& c = contacts_[std::size_t(springs_.active[j])];
+    if (dimension_ == 2) {
+      y_[layout.stretches + j] = c.stretch.dot(planar_tangent(rough_kinematics<2>(j, y_.data())));
+      continue;
+    }
     for (std::size_t k = 0; k < d; ++k)
       y_[layout.stretches + d * j + k] = c.stretch(Eigen::Index(k));
   }
@@ -59,7 +73,9 @@ void MovingGroup::move_rough() {
     const std::size_t j = std::size_t(c.slot);
     c.tangential_impulse +=
         read(y_.data() + layout.tangential + d * j, dimension_, world_.mass_scale / T);
-    c.stretch = read(y_.data() + layout.stretches + d * j, dimension_);
+    c.stretch = dimension_ == 2 ? Eigen::Vector3d(y_[layout.stretches + j] *
+                                                  planar_tangent(rough_kinematics<2>(j, y_.data())))
+                                : read(y_.data() + layout.stretches + d * j, dimension_);
     c.slip_work += y_[layout.works + j] * world_.mass_scale * world_.speed_bound / T;
   }
 }
@@ -101,23 +117,88 @@ MovingGroup::RoughKinematics MovingGroup::rough_kinematics(std::size_t j, const 
   return k;
 }
 
-template <int D>
-void MovingGroup::rhs_rough(const double* y, double* dydt) {
-  const std::size_t n = members_.size(), velocities = std::size_t(D) * n;
+// In the plane the contact's tangent is t = (-n_y, n_x), n x t = z: the slip along it is
+// sigma = t.(v_b - v_a) - (r_a w_a + r_b w_b), the stretch xi a scalar along it (d xi/dt = sigma
+// while it sticks: its turning with the normal is t's own), the tangential force f t, whose
+// torque on each body is -lever f about z.
+MovingGroup::RoughRates MovingGroup::start_rough_rhs(const double* y, double* dydt) const {
+  const std::size_t velocities = std::size_t(dimension_) * members_.size();
+  const double T = world_.time_scale;
+  RoughRates rates{dydt + velocities, dydt + rough_layout_.spins, 1.0 / T, T / world_.mass_scale,
+                   T / (world_.mass_scale * world_.speed_bound)};
+  for (std::size_t i = 0; i < velocities; ++i) dydt[i] = y[velocities + i] * rates.inverse_T;
+  std::fill(rates.acceleration, rates.acceleration + velocities, 0.0);
+  std::fill(rates.spin_rate,
+            rates.spin_rate + std::size_t(rough_layout_.spin_size) * members_.size(), 0.0);
+  return rates;
+}
+
+void MovingGroup::rhs_planar_rough(const double* y, double* dydt) {
+  const std::size_t velocities = 2 * members_.size();
   const RoughLayout& layout = rough_layout_;
-  const double T = world_.time_scale, inverse_T = 1.0 / T;
-  const double impulse_rate = T / world_.mass_scale;
-  const double work_rate = T / (world_.mass_scale * world_.speed_bound);
-  for (std::size_t i = 0; i < velocities; ++i) dydt[i] = y[velocities + i] * inverse_T;
-  double* acceleration = dydt + velocities;
-  double* spin_rate = dydt + layout.spins;
-  std::fill(acceleration, acceleration + velocities, 0.0);
-  std::fill(spin_rate, spin_rate + std::size_t(layout.spin_size) * n, 0.0);
-  // a torque (N m) onto member m's spin's rate
-  auto add_torque = [&](std::size_t m, const Eigen::Vector3d& torque) {
-    double* rate = spin_rate + std::size_t(layout.spin_size) * m;
-    for (int k = 0; k < layout.spin_size; ++k)  // about z alone in the plane
-      rate[k] += state_.spin_gain[m] * torque(D == 3 ? k : 2);
+  const auto [acceleration, spin_rate, inverse_T, impulse_rate, work_rate] =
+      start_rough_rhs(y, dydt);
+  const double* spin = y + layout.spins;  // T r w
+  for (std::size_t j = 0; j < springs_.list.size(); ++j) {
+    const Spring& s = springs_.list[j];
+    const numerics::ContactLaw& law = contacts_[std::size_t(springs_.active[j])].law;
+    const RoughKinematics contact = rough_kinematics<2>(j, y);
+    const double delta = contact.delta;
+    double* tangential = dydt + layout.tangential + 2 * j;
+    if (!(delta > 0.0)) {  // open: no force, the stretch held (forgotten at the commit)
+      note_regime(j, kOpen);
+      dydt[2 * velocities + j] = dydt[layout.works + j] = dydt[layout.stretches + j] = 0.0;
+      tangential[0] = tangential[1] = 0.0;
+      continue;
+    }
+    const double nx = contact.normal.x(), ny = contact.normal.y();
+    const double sliding = nx * contact.relative.y() - ny * contact.relative.x();  // t.relative
+    const double slip = sliding - contact.rolling.z();
+    const double force = law.force(delta);  // e = 1 (MovingContacts)
+    double friction = 0.0, stretch_rate = 0.0;
+    if (law.friction > 0.0) {  // else no tangential force, and the stretch held at 0
+      numerics::mindlin::Terms terms =
+          numerics::mindlin::terms(law.tangential_stiffness_ratio, law.exponent, law.friction,
+                                   force, delta, -contact.normal.dot(contact.relative));
+      terms.cap_band = kCapBand;
+      const auto by_state = numerics::mindlin::rates_by_state(y + layout.stretches + j, &slip, 1,
+                                                              terms, &friction, &stretch_rate);
+      note_regime(j, std::uint8_t(kUnderCap << int(by_state)));
+    } else {
+      note_regime(j, kUnderCap);
+    }
+    const double push_x = force * nx - friction * ny, push_y = force * ny + friction * nx;
+    const auto a = std::size_t(s.first);
+    const auto [lever_a, lever_b] = levers(j, delta);
+    acceleration[2 * a] -= state_.gain[a] * push_x;
+    acceleration[2 * a + 1] -= state_.gain[a] * push_y;
+    spin_rate[a] -= state_.spin_gain[a] * lever_a * friction;
+    // the tangential force's power on the bodies (W), its torques' levers included
+    double power =
+        friction * (sliding - lever_a / world_.geometry.radius(members_[a]) * spin[a] * inverse_T);
+    if (s.second >= 0) {
+      const auto b = std::size_t(s.second);
+      acceleration[2 * b] += state_.gain[b] * push_x;
+      acceleration[2 * b + 1] += state_.gain[b] * push_y;
+      spin_rate[b] -= state_.spin_gain[b] * lever_b * friction;
+      power -= friction * lever_b / world_.geometry.radius(members_[b]) * spin[b] * inverse_T;
+    }
+    dydt[2 * velocities + j] = impulse_rate * force;
+    dydt[layout.works + j] = -work_rate * power;
+    tangential[0] = -impulse_rate * friction * ny;
+    tangential[1] = impulse_rate * friction * nx;
+    dydt[layout.stretches + j] = stretch_rate;
+  }
+}
+
+void MovingGroup::rhs_spatial_rough(const double* y, double* dydt) {
+  constexpr int D = 3;
+  const std::size_t velocities = std::size_t(D) * members_.size();
+  const RoughLayout& layout = rough_layout_;
+  const auto [acceleration, spin_rate, inverse_T, impulse_rate, work_rate] =
+      start_rough_rhs(y, dydt);
+  auto add_torque = [&](std::size_t m, const Eigen::Vector3d& torque) {  // N m
+    for (std::size_t k = 0; k < 3; ++k) spin_rate[3 * m + k] += state_.spin_gain[m] * torque(k);
   };
   for (std::size_t j = 0; j < springs_.list.size(); ++j) {
     const Spring& s = springs_.list[j];
@@ -129,8 +210,7 @@ void MovingGroup::rhs_rough(const double* y, double* dydt) {
     double* tangential = dydt + layout.tangential + std::size_t(D) * j;
     double* stretch_rate = dydt + layout.stretches + std::size_t(D) * j;
     if (!(delta > 0.0)) {  // open: no force, the stretch held (forgotten at the commit)
-      dydt[layout.works + j] = 0.0;
-      dydt[2 * velocities + j] = 0.0;
+      dydt[layout.works + j] = dydt[2 * velocities + j] = 0.0;
       std::fill(tangential, tangential + D, 0.0);
       std::fill(stretch_rate, stretch_rate + D, 0.0);
       continue;
@@ -182,7 +262,8 @@ void MovingGroup::rhs_rough(const double* y, double* dydt) {
   }
 }
 
-template void MovingGroup::rhs_rough<2>(const double*, double*);
-template void MovingGroup::rhs_rough<3>(const double*, double*);
+template MovingGroup::RoughKinematics MovingGroup::rough_kinematics<2>(std::size_t,
+                                                                       const double*) const;
+template Eigen::Vector3d MovingGroup::rolling_of<2>(std::size_t, const double*) const;
 
 }  // namespace mimpact::granular

@@ -65,8 +65,8 @@ double Spring::watched(const double* xi, const double* slip, int rows, const Ter
   return along - terms.cap_rate;
 }
 
-void rates_by_state(const double* xi, const double* slip, int rows, const Terms& terms,
-                    double* force, double* xi_rate) {
+ByState rates_by_state(const double* xi, const double* slip, int rows, const Terms& terms,
+                       double* force, double* xi_rate) {
   double d[3] = {0.0, 0.0, 0.0}, size = 0.0, along = 0.0;
   for (int k = 0; k < rows; ++k) size += xi[k] * xi[k];
   size = std::sqrt(size);
@@ -79,12 +79,14 @@ void rates_by_state(const double* xi, const double* slip, int rows, const Terms&
     along += d[k] * slip[k];
   }
   const double elastic = terms.stiffness * size;
-  const bool slipping = elastic >= terms.limit && along > terms.cap_rate;
+  const bool slipping = elastic >= (1.0 - terms.cap_band) * terms.limit && along > terms.cap_rate;
   const double magnitude = std::min(elastic, terms.limit);
   for (int k = 0; k < rows; ++k) {
     force[k] = -magnitude * d[k];
     xi_rate[k] = slipping ? slip[k] - along * d[k] + terms.cap_rate * d[k] : slip[k];
   }
+  if (slipping) return ByState::slipping;
+  return elastic >= terms.limit ? ByState::on_cap : ByState::under_cap;
 }
 
 void Spring::pass(double* xi, int rows, const Terms& terms) {

@@ -155,15 +155,17 @@ nlohmann::ordered_json configuration_json(
 // The work of a compliant run in the moving geometry (docs/design/moving_geometry.md), or null.
 nlohmann::ordered_json moving_json(const granular::MovingContactsStats& work) {
   if (work.windows == 0) return nullptr;
-  return {{"body_steps", work.member_steps},
-          {"group_steps", work.steps},
-          {"windows", work.windows},
-          {"group_restarts", work.group_restarts},
-          {"body_restarts", work.member_restarts},
-          {"groups_integrated_again", work.redone_groups},
-          {"largest_group", work.largest_group},
-          {"most_bodies_in_motion", work.most_bodies_in_motion},
-          {"contacts_loaded", work.contacts_loaded}};
+  nlohmann::ordered_json json = {{"body_steps", work.member_steps},
+                                 {"group_steps", work.steps},
+                                 {"windows", work.windows},
+                                 {"group_restarts", work.group_restarts},
+                                 {"body_restarts", work.member_restarts},
+                                 {"groups_integrated_again", work.redone_groups},
+                                 {"largest_group", work.largest_group},
+                                 {"most_bodies_in_motion", work.most_bodies_in_motion},
+                                 {"contacts_loaded", work.contacts_loaded}};
+  if (work.amended_springs > 0) json["springs_amended_at_a_switch"] = work.amended_springs;
+  return json;
 }
 
 granular::TimeSeries frame_table(const granular::Frames& frames, bool forces, int dimension) {

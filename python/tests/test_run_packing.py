@@ -149,7 +149,10 @@ def test_the_compliant_contacts_rub_in_the_frozen_configuration():
     # each method releases a contact at its own resolution of the overlap, where the normal law
     # keeps about 1e-9 J of 2.5e-3 J (e = 1): the slip's share agrees to that
     assert energy["slip_total"] == pytest.approx(lzb_energy["slip_total"], rel=1e-5)
-    scene["compliant"] = {"geometry": "moving", "tolerance": 1e-10}
+    # the steps across the springs' switches are amended, no longer shortened by each: the
+    # ledger closes to the Dormand-Prince steps' own accuracy, 1.2e-9 at tolerance 1e-10 and
+    # 1.5e-10 at 1e-11 (as without friction through the same steps)
+    scene["compliant"] = {"geometry": "moving", "tolerance": 1e-11}
     moving = mimpact.run_packing(scene).summary["energy"]
     before = moving["kinetic_before"] + moving["rotational_before"]
     lost = before - moving["kinetic_after"] - moving["rotational_after"]

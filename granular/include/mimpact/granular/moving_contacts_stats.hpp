@@ -17,6 +17,7 @@ struct MovingContactsStats {
   std::int64_t largest_group = 0;
   std::int64_t list_refreshes = 0;
   std::int64_t contacts_loaded = 0;  // contacts that have carried force
+  std::int64_t amended_springs = 0;  // rough planar springs amended at a switch within a step
 };
 
 }  // namespace mimpact::granular

@@ -23,6 +23,10 @@ namespace mimpact::numerics {
 // dense output (a group's event search reads the few bodies it watches, not its whole state),
 // stages formed only where the right-hand side reads them (a contact's impulse, the integral
 // of its force, is read by no derivative), and no reallocation at every step.
+//
+// A right-hand side with adjust_error(State& error) is handed each attempt's error estimate
+// (per component, before the tolerance divides it) to take out what it amends itself after the
+// step (a switch within it, which its stages could not integrate).
 class DenseOutput : public EmbeddedPair<DenseOutput> {
  public:
   explicit DenseOutput(const OdeOptions& options)
@@ -88,6 +92,7 @@ class DenseOutput : public EmbeddedPair<DenseOutput> {
   std::array<State, 5> stage_;  // k2..k6
   State probe_;                 // the state at a stage
   std::size_t read_ = 0;        // components the right-hand side reads
+  State error_;                 // the error estimate, for a right-hand side that adjusts it
 };
 
 // The Butcher tableau of Dormand-Prince 5(4): nodes c, stage weights a, the fifth-order
@@ -136,11 +141,20 @@ double DenseOutput::attempt(Rhs& rhs, double h) {
     out[i] = 1.0 * y[i] + h * b1 * k1[i] + h * b3 * k3[i] + h * b4 * k4[i] + h * b5 * k5[i] +
              h * b6 * k6[i];
   rhs(out, k7, t + h);
+  auto error_of = [&](std::size_t i) {
+    return h * e1 * k1[i] + h * e3 * k3[i] + h * e4 * k4[i] + h * e5 * k5[i] + h * e6 * k6[i] +
+           h * e7 * k7[i];
+  };
+  constexpr bool kAdjusts = requires(Rhs & r, State & e) { r.adjust_error(e); };
+  if constexpr (kAdjusts) {
+    error_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) error_[i] = error_of(i);
+    rhs.adjust_error(error_);
+  }
   double largest = 0.0;
   const double h_abs = 1.0 * std::abs(h);
   for (std::size_t i = 0; i < n; ++i) {
-    const double error = h * e1 * k1[i] + h * e3 * k3[i] + h * e4 * k4[i] + h * e5 * k5[i] +
-                         h * e6 * k6[i] + h * e7 * k7[i];
+    const double error = kAdjusts ? error_[i] : error_of(i);
     largest = std::max(
         largest, std::abs(error) /
                      (absolute_ + relative_ * (1.0 * std::abs(y[i]) + h_abs * std::abs(k1[i]))));

@@ -46,6 +46,15 @@ class EmbeddedPair {
     y.resize(y_[current_].size());
     for (std::size_t i = 0; i < y.size(); ++i) y[i] = self.interpolate(w, i);
   }
+  // The state at the start of the last step.
+  const State& start_state() const { return y_[1 - current_]; }
+  // The state at the end of the last step, to amend what the pair's stages could not form (a
+  // switch within the step): the next step forms its derivative there anew. The dense output
+  // over the last step stays the pair's own.
+  State& amend_end() {
+    derivative_known_ = false;
+    return y_[current_];
+  }
   // The length of the last step (s), 0 before the first.
   double last_step() const { return last_step_; }
   // The step the controller would try next (s).

@@ -16,9 +16,13 @@ namespace mimpact::numerics::mindlin {
 
 // The spring's coefficients at one instant of its contact.
 struct Terms {
-  double stiffness = 0.0;                                                   // k_t, N/m
-  double limit = 0.0;                                                       // mu F_n, N
-  double cap_rate = 0.0;                                                    // r_c', m/s
+  double stiffness = 0.0;  // k_t, N/m
+  double limit = 0.0;      // mu F_n, N
+  double cap_rate = 0.0;   // r_c', m/s
+  // a share below the cap where a stretch pushed outward reads as slipping (rates_by_state): an
+  // explicit step's stages follow a slipping stretch's cap only to their own order, and read it
+  // just under; 0 in the model itself
+  double cap_band = 0.0;
   double cap() const { return stiffness > 0.0 ? limit / stiffness : 0.0; }  // r_c, m
 };
 
@@ -50,8 +54,11 @@ struct Spring {
 // (the moving geometry's groups, whose error control shortens the steps across one): it slips
 // where its stretch has reached the cap and the slip stretches it further, d.s > r_c', else
 // sticks; its force is capped at mu F_n either way, so that it is continuous in the stretch.
-// Writes f_t and dxi/dt along the `rows` (1 to 3) components.
-void rates_by_state(const double* xi, const double* slip, int rows, const Terms& terms,
-                    double* force, double* xi_rate);
+// Writes f_t and dxi/dt along the `rows` (1 to 3) components, and says which it read: under
+// the cap, on it (the force capped, the stretch not pushed further out) or slipping (within
+// terms.cap_band of the cap).
+enum class ByState : unsigned char { under_cap, on_cap, slipping };
+ByState rates_by_state(const double* xi, const double* slip, int rows, const Terms& terms,
+                       double* force, double* xi_rate);
 
 }  // namespace mimpact::numerics::mindlin
