@@ -183,6 +183,7 @@ class MovingGroup {
   // step's end amended by what the stages missed of its tangential impulse, its torques, its
   // slip work and its stretch.
   void amend_rough_step();
+  void sample_rough_nodes();  // rough_nodes_ over the step just taken
   // The same amendment, at the share `share` of the last step, of y there (the pair's own
   // dense output): the springs amended at its end, integrated to `share`.
   void amend_rough(double share, std::vector<double>& y) const;
@@ -327,9 +328,9 @@ class MovingGroup {
   std::unique_ptr<numerics::RungeKuttaNystrom> dense_;
   std::unique_ptr<numerics::DenseOutput> rough_;  // in place of dense_ where world_.rough
   RoughLayout rough_layout_;
-  // the state's first RoughLayout::tangential components (positions, velocities, impulses and
-  // spins) at the shares 0, 1/4, 1/2, 3/4, 1 of the last step, as the pair's dense output gives
-  // them (amend_rough)
+  // the state's first RoughLayout::stretches components (positions, velocities, impulses,
+  // spins and tangential impulses) at the shares 0, 1/4, 1/2, 3/4, 1 of the last step, as the
+  // pair's dense output gives them (amend_rough)
   std::array<std::vector<double>, 5> rough_nodes_;
   std::vector<double> y_, probe_;
   double last_step_ = 0.0;

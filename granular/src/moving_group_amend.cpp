@@ -106,8 +106,13 @@ void MovingGroup::amend_rough_step() {
     if (springs_.regimes[j] == kSlipping) springs_.slipping.push_back(j);
     springs_.regimes[j] = springs_.last_regime[j];
   }
-  if (!springs_.slipping.empty()) put_on_caps(rough_->amend_end());
-  if (amended.empty()) return;
+  if (amended.empty() && springs_.slipping.empty()) return;
+  if (!amended.empty()) sample_rough_nodes();
+  world_.stats.amended_springs += std::int64_t(amended.size());
+  amend_rough(1.0, rough_->amend_end());
+}
+
+void MovingGroup::sample_rough_nodes() {
   const auto prefix = std::ptrdiff_t(rough_layout_.stretches);
   const double start = rough_->time() - rough_->last_step();
   for (std::size_t k = 0; k < kNodeShares.size(); ++k) {
@@ -121,8 +126,6 @@ void MovingGroup::amend_rough_step() {
     node.resize(std::size_t(prefix));
     for (std::size_t i = 0; i < node.size(); ++i) node[i] = rough_->component_at(weights, i);
   }
-  world_.stats.amended_springs += std::int64_t(amended.size());
-  amend_rough(1.0, rough_->amend_end());
 }
 
 void MovingGroup::put_on_caps(std::vector<double>& y) const {
