@@ -56,14 +56,6 @@ PlayIntegrals integrate_play(const PlanarPlay& play, const ContactAlongStep& alo
 
 }  // namespace
 
-std::pair<double, double> MovingGroup::levers(std::size_t j, double delta) const {
-  const Spring& s = springs_.list[j];
-  const double radius_a = world_.geometry.radius(members_[std::size_t(s.first)]);
-  if (s.second < 0) return {radius_a, 0.0};
-  const double radius_b = world_.geometry.radius(members_[std::size_t(s.second)]);
-  return {radius_a - 0.5 * delta, radius_b - 0.5 * delta};
-}
-
 void MovingGroup::adjust_rough_error(std::vector<double>& error) const {
   if (dimension_ != 2) return;
   const RoughLayout& layout = rough_layout_;

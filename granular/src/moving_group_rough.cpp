@@ -121,6 +121,14 @@ MovingGroup::RoughKinematics MovingGroup::rough_kinematics(std::size_t j, const 
 // sigma = t.(v_b - v_a) - (r_a w_a + r_b w_b), the stretch xi a scalar along it (d xi/dt = sigma
 // while it sticks: its turning with the normal is t's own), the tangential force f t, whose
 // torque on each body is -lever f about z.
+std::pair<double, double> MovingGroup::levers(std::size_t j, double delta) const {
+  const Spring& s = springs_.list[j];
+  const double radius_a = world_.geometry.radius(members_[std::size_t(s.first)]);
+  if (s.second < 0) return {radius_a, 0.0};
+  const double radius_b = world_.geometry.radius(members_[std::size_t(s.second)]);
+  return {radius_a - 0.5 * delta, radius_b - 0.5 * delta};
+}
+
 MovingGroup::RoughRates MovingGroup::start_rough_rhs(const double* y, double* dydt) const {
   const std::size_t velocities = std::size_t(dimension_) * members_.size();
   const double T = world_.time_scale;
@@ -161,8 +169,8 @@ void MovingGroup::rhs_planar_rough(const double* y, double* dydt) {
           numerics::mindlin::terms(law.tangential_stiffness_ratio, law.exponent, law.friction,
                                    force, delta, -contact.normal.dot(contact.relative));
       terms.cap_band = kCapBand;
-      const auto by_state = numerics::mindlin::rates_by_state(y + layout.stretches + j, &slip, 1,
-                                                              terms, &friction, &stretch_rate);
+      const auto by_state = numerics::mindlin::rates_by_state(y[layout.stretches + j], slip, terms,
+                                                              friction, stretch_rate);
       note_regime(j, std::uint8_t(kUnderCap << int(by_state)));
     } else {
       note_regime(j, kUnderCap);

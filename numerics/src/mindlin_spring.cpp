@@ -89,6 +89,18 @@ ByState rates_by_state(const double* xi, const double* slip, int rows, const Ter
   return elastic >= terms.limit ? ByState::on_cap : ByState::under_cap;
 }
 
+ByState rates_by_state(double xi, double slip, const Terms& terms, double& force, double& xi_rate) {
+  const double toward = xi != 0.0 ? xi : slip;
+  const double d = toward > 0.0 ? 1.0 : toward < 0.0 ? -1.0 : 0.0;
+  const double elastic = terms.stiffness * std::abs(xi);
+  const bool slipping =
+      elastic >= (1.0 - terms.cap_band) * terms.limit && d * slip > terms.cap_rate;
+  force = -std::min(elastic, terms.limit) * d;
+  xi_rate = slipping ? terms.cap_rate * d : slip;
+  if (slipping) return ByState::slipping;
+  return elastic >= terms.limit ? ByState::on_cap : ByState::under_cap;
+}
+
 void Spring::pass(double* xi, int rows, const Terms& terms) {
   if (mode != Mode::slip) {
     mode = Mode::slip;

@@ -60,5 +60,7 @@ struct Spring {
 enum class ByState : unsigned char { under_cap, on_cap, slipping };
 ByState rates_by_state(const double* xi, const double* slip, int rows, const Terms& terms,
                        double* force, double* xi_rate);
+// The same along one row (a planar contact's tangent), without the norms: the same numbers.
+ByState rates_by_state(double xi, double slip, const Terms& terms, double& force, double& xi_rate);
 
 }  // namespace mimpact::numerics::mindlin
