@@ -20,6 +20,11 @@
 
 namespace mimpact::granular {
 
+// the tangent (-n_y, n_x) of a planar contact of normal n, n x t = z
+inline Eigen::Vector3d planar_tangent(const Eigen::Vector3d& normal) {
+  return {-normal.y(), normal.x(), 0.0};
+}
+
 class MovingGroup {
  public:
   MovingGroup(MovingWorld& world, std::int32_t id) : world_(world), id_(id) {}
@@ -154,10 +159,6 @@ class MovingGroup {
   };
   template <int D>
   RoughKinematics rough_kinematics(std::size_t spring, const double* y) const;
-  // the tangent (-n_y, n_x) of a planar contact
-  static Eigen::Vector3d planar_tangent(const RoughKinematics& k) {
-    return {-k.normal.y(), k.normal.x(), 0.0};
-  }
   template <int D>
   Eigen::Vector3d rolling_of(std::size_t member, const double* y) const;  // r omega (m/s)
   // What both rough right-hand sides add to, zeroed (x' = w / T written): the members'

@@ -16,10 +16,9 @@ using numerics::mindlin::PlaySegment;
 using numerics::mindlin::Regime;
 using numerics::mindlin::StepPolynomial;
 
-// the tangent of a planar contact, its normal turned by a quarter about z
-Eigen::Vector3d tangent_of(const Eigen::Vector3d& normal) { return {-normal.y(), normal.x(), 0.0}; }
+// the tangent of a planar contact whose normal is interpolated (not quite of length 1)
 Eigen::Vector3d tangent_of(double normal_x, double normal_y) {
-  return Eigen::Vector3d(-normal_y, normal_x, 0.0).normalized();
+  return planar_tangent({normal_x, normal_y, 0.0}).normalized();
 }
 
 // A spring's contact along the step, as polynomials in its share: the slip along the tangent
@@ -171,7 +170,7 @@ double MovingGroup::amend_spring(std::size_t j, double share, std::vector<double
   for (std::size_t k = 0; k < kNodeShares.size(); ++k) {
     const double* node = rough_nodes_[k].data();
     const RoughKinematics q = rough_kinematics<2>(j, node);
-    const Eigen::Vector3d tangent = tangent_of(q.normal);
+    const Eigen::Vector3d tangent = planar_tangent(q.normal);
     const Eigen::Vector3d sliding = q.relative - q.normal.dot(q.relative) * q.normal;
     slip[k] = h * (sliding + q.normal.cross(q.rolling)).dot(tangent);
     overlap[k] = q.delta;
@@ -249,7 +248,7 @@ double MovingGroup::move_bodies(const std::vector<double>& moved, std::vector<do
     const RoughKinematics q = rough_kinematics<2>(j, y.data());
     if (!(law.friction > 0.0) || !(q.delta > 0.0)) continue;
     // a sticking spring's stretch moves with the slip its bodies' moves make (rhs_rough's)
-    const Eigen::Vector3d tangent = tangent_of(q.normal);
+    const Eigen::Vector3d tangent = planar_tangent(q.normal);
     double& stretch = y[rough_layout_.stretches + j];
     const double cap = law.friction / (law.tangential_stiffness_ratio * law.exponent) * q.delta;
     if (!(std::abs(stretch) < cap)) continue;

@@ -50,7 +50,8 @@ void MovingGroup::restart_rough() {
   for (std::size_t j = 0; j < springs; ++j) {
     const Contact& c = contacts_[std::size_t(springs_.active[j])];
     if (dimension_ == 2) {
-      y_[layout.stretches + j] = c.stretch.dot(planar_tangent(rough_kinematics<2>(j, y_.data())));
+      y_[layout.stretches + j] =
+          c.stretch.dot(planar_tangent(rough_kinematics<2>(j, y_.data()).normal));
       continue;
     }
     for (std::size_t k = 0; k < d; ++k)
@@ -73,9 +74,10 @@ void MovingGroup::move_rough() {
     const std::size_t j = std::size_t(c.slot);
     c.tangential_impulse +=
         read(y_.data() + layout.tangential + d * j, dimension_, world_.mass_scale / T);
-    c.stretch = dimension_ == 2 ? Eigen::Vector3d(y_[layout.stretches + j] *
-                                                  planar_tangent(rough_kinematics<2>(j, y_.data())))
-                                : read(y_.data() + layout.stretches + d * j, dimension_);
+    c.stretch = dimension_ == 2
+                    ? Eigen::Vector3d(y_[layout.stretches + j] *
+                                      planar_tangent(rough_kinematics<2>(j, y_.data()).normal))
+                    : read(y_.data() + layout.stretches + d * j, dimension_);
     c.slip_work += y_[layout.works + j] * world_.mass_scale * world_.speed_bound / T;
   }
 }
