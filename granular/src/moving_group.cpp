@@ -335,7 +335,7 @@ void MovingGroup::move_to(double t) {
     } else {
       rough_->state_at(t, y_);
       const double start = rough_->time() - rough_->last_step();
-      if (dimension_ == 2) amend_rough((t - start) / rough_->last_step(), y_);
+      amend_rough((t - start) / rough_->last_step(), y_);
     }
     move_rough();
   } else {
@@ -391,7 +391,7 @@ void MovingGroup::take_step() {
   if (rough_) {
     rough_->step(RoughMotion{*this});
     last_step_ = rough_->last_step();
-    if (dimension_ == 2) amend_rough_step();
+    amend_rough_step();
   } else {
     dense_->step(Motion{*this});
     last_step_ = dense_->last_step();

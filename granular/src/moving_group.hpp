@@ -178,34 +178,55 @@ class MovingGroup {
     springs_.regimes[spring] |= regime;
     springs_.last_regime[spring] = regime;
   }
-  // After a step of a planar rough group (moving_group_amend.cpp): each spring whose regime
-  // changed within it, its stretch's rate jumping, is integrated again along the step's
-  // continuous extension with its switches located (numerics::mindlin::PlanarPlay), and the
-  // step's end amended by what the stages missed of its tangential impulse, its torques, its
-  // slip work and its stretch.
+  // After a step of a rough group (moving_group_amend.cpp): each spring whose regime changed
+  // within it, its stretch's rate jumping, and in space each that slipped in it (its direction
+  // turns toward the slip's at |s| / r_c, stiffly), is integrated again along the step's
+  // continuous extension with its switches located (numerics::mindlin::PlanarPlay,
+  // SpatialPlay), and the step's end amended by what the stages missed of its tangential
+  // impulse, its torques, its slip work and its stretch.
   void amend_rough_step();
   void sample_rough_nodes();  // rough_nodes_ over the step just taken
   // The same amendment, at the share `share` of the last step, of y there (the pair's own
   // dense output): the springs amended at its end, integrated to `share`.
   void amend_rough(double share, std::vector<double>& y) const;
+  template <int D>
+  void amend_rough_in(double share, std::vector<double>& y) const;
   // Spring j's part: its missed impulse into y (the kinetic energy it gives booked as slip
   // work), and what that impulse would have moved its bodies by over the step into `moved`
-  // (per member: the displacement, m, and r times the turn, m); returns that moment's size.
+  // (per member: the displacement, m, and r times the turn, m; three each); returns that
+  // moment's size.
+  template <int D>
   double amend_spring(std::size_t spring, double share, std::vector<double>& y,
                       std::vector<double>& moved) const;
-  // The stretches of the springs that slipped throughout the last step put on their caps.
+  // Spring j's missed impulse (N s, on its second body) and its moment (N s times the step's
+  // share) into its bodies' velocities and spins in y, and their moves into `moved`; returns
+  // the kinetic energy (J) it gave them.
+  template <int D>
+  double push_missed(std::size_t spring, const Eigen::Vector3d& missed,
+                     const Eigen::Vector3d& missed_moment, std::vector<double>& y,
+                     std::vector<double>& moved) const;
+  // The stretches of the planar springs that slipped throughout the last step put on their caps.
   void put_on_caps(std::vector<double>& y) const;
   // The bodies moved, and the stretches of the sticking springs on them with the slip that
   // makes; returns the energy (J) their normal springs gained.
+  template <int D>
   double move_bodies(const std::vector<double>& moved, std::vector<double>& y) const;
+  template <int D>
   double kinetic_energy(std::size_t member, const std::vector<double>& y) const;  // J, with spin
-  double normal_energy(std::size_t spring, const std::vector<double>& y) const;   // J
-  // Takes out of a step's error estimate what the springs that switch in it (so far: in the
-  // step's attempts) contributed through their tangential impulses: amend_rough_step replaces
-  // those by its own integration.
+  template <int D>
+  double normal_energy(std::size_t spring, const std::vector<double>& y) const;  // J
+  // Takes out of a step's error estimate what the amended springs (so far: in the step's
+  // attempts) contributed through their tangential impulses: amend_rough_step replaces those by
+  // its own integration.
   void adjust_rough_error(std::vector<double>& error) const;
+  template <int D>
+  void adjust_rough_error_in(std::vector<double>& error) const;
   static bool switching(std::uint8_t seen) {
     return (seen & (seen - 1)) != 0 || (seen & kOnCap) != 0;  // two regimes or more, or capped
+  }
+  // the springs a step amends (amend_rough_step), by the regimes they went through
+  bool amended(std::uint8_t seen) const {
+    return switching(seen) || (dimension_ == 3 && (seen & kSlipping) != 0);
   }
   // the lever arms (m) of spring j's tangential force's torques on its two bodies at overlap
   // delta (LAMMPS's: r - delta/2 between beads, r at a wall)

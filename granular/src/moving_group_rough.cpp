@@ -220,6 +220,7 @@ void MovingGroup::rhs_spatial_rough(const double* y, double* dydt) {
     double* tangential = dydt + layout.tangential + std::size_t(D) * j;
     double* stretch_rate = dydt + layout.stretches + std::size_t(D) * j;
     if (!(delta > 0.0)) {  // open: no force, the stretch held (forgotten at the commit)
+      note_regime(j, kOpen);
       dydt[layout.works + j] = dydt[2 * velocities + j] = 0.0;
       std::fill(tangential, tangential + D, 0.0);
       std::fill(stretch_rate, stretch_rate + D, 0.0);
@@ -233,12 +234,17 @@ void MovingGroup::rhs_spatial_rough(const double* y, double* dydt) {
     const double force = c.law.force(delta);  // e = 1 (MovingContacts)
     const Eigen::Vector3d stretch = read(y + layout.stretches + std::size_t(D) * j, D);
     double friction[3] = {0.0, 0.0, 0.0}, rate[3] = {0.0, 0.0, 0.0};
-    if (c.law.friction > 0.0)  // else no tangential force, and the stretch held at 0
-      numerics::mindlin::rates_by_state(
-          stretch.data(), slip.data(), D,
+    if (c.law.friction > 0.0) {  // else no tangential force, and the stretch held at 0
+      numerics::mindlin::Terms terms =
           numerics::mindlin::terms(c.law.tangential_stiffness_ratio, c.law.exponent, c.law.friction,
-                                   force, delta, -approach),
-          friction, rate);
+                                   force, delta, -approach);
+      terms.cap_band = kCapBand;
+      const auto by_state =
+          numerics::mindlin::rates_by_state(stretch.data(), slip.data(), D, terms, friction, rate);
+      note_regime(j, std::uint8_t(kUnderCap << int(by_state)));
+    } else {
+      note_regime(j, kUnderCap);
+    }
     const Eigen::Vector3d tangential_force = read(friction, D);
     // the stretch stays in the tangent plane as the normal turns
     const Eigen::Vector3d stretch_rotation = stretch.dot(turn) * normal;
@@ -273,6 +279,8 @@ void MovingGroup::rhs_spatial_rough(const double* y, double* dydt) {
 }
 
 template MovingGroup::RoughKinematics MovingGroup::rough_kinematics<2>(std::size_t,
+                                                                       const double*) const;
+template MovingGroup::RoughKinematics MovingGroup::rough_kinematics<3>(std::size_t,
                                                                        const double*) const;
 template Eigen::Vector3d MovingGroup::rolling_of<2>(std::size_t, const double*) const;
 

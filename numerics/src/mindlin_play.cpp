@@ -4,8 +4,6 @@
 #include <cfloat>
 #include <cmath>
 
-#include "mimpact/numerics/root_bracketing.hpp"
-
 namespace mimpact::numerics::mindlin {
 
 namespace {
@@ -17,25 +15,7 @@ constexpr double kInverse[5][5] = {{1.0, 0.0, 0.0, 0.0, 0.0},
                                    {-80.0 / 3.0, 96.0, -128.0, 224.0 / 3.0, -16.0},
                                    {32.0 / 3.0, -128.0 / 3.0, 64.0, -128.0 / 3.0, 32.0 / 3.0}};
 
-constexpr int kSamples = 8;         // a segment's search for its first switch, per step
-constexpr double kLocated = 1e-14;  // of the step: how narrowly a switch is located
 constexpr double kOnTheCap = 1e-9;  // relative: a stretch this near the cap starts on it
-
-// The first share in (a, b] where g falls to 0 or below, g (a continuous function) taken as > 0
-// just after a (where a segment begins on its own switch, as a spring born with the cap at 0);
-// b + 1 if it does not.
-template <class Function>
-double first_crossing(Function&& g, double a, double b) {
-  double lower = a, g_lower = std::max(g(a), DBL_MIN);
-  for (int k = 1; k <= kSamples; ++k) {
-    const double upper = k == kSamples ? b : a + (b - a) * k / kSamples;
-    const double g_upper = g(upper);
-    if (g_upper <= 0.0) return narrow_crossing(g, lower, upper, g_lower, g_upper, kLocated).upper;
-    lower = upper;
-    g_lower = g_upper;
-  }
-  return b + 1.0;
-}
 
 }  // namespace
 
@@ -73,16 +53,10 @@ PlanarPlay::PlanarPlay(const StepPolynomial& slip, const StepPolynomial& overlap
       cap_ratio_(cap_ratio),
       until_(until) {
   start(stretch);
-  for (;;) {
-    PlaySegment& segment = segments_[count_ - 1];
-    close(segment);
-    if (segment.to >= until_ || count_ == kMostSegments) {
-      segment.to = until_;
-      return;
-    }
-    segments_[count_] = after(segment, segment.to);
-    ++count_;
-  }
+  count_ = play_detail::split_step(
+      segments_, until_,
+      [this](const PlaySegment& segment, double s) { return watched(segment, s); },
+      [this](const PlaySegment& ended, double at) { return after(ended, at); });
 }
 
 double PlanarPlay::stretch_at(const PlaySegment& segment, double s) const {
@@ -114,28 +88,18 @@ void PlanarPlay::start(double stretch) {
   segments_[0] = {.regime = Regime::stick, .start = std::clamp(stretch, -cap, cap)};
 }
 
-void PlanarPlay::close(PlaySegment& segment) const {
-  const double from = segment.from;
+double PlanarPlay::watched(const PlaySegment& segment, double s) const {
   switch (segment.regime) {
     case Regime::open:  // until the contact closes
-      segment.to = first_crossing([&](double s) { return -overlap_(s); }, from, until_);
-      return;
-    case Regime::stick:  // until the stretch reaches the cap, or the contact opens
-      segment.to = first_crossing(
-          [&](double s) {
-            const double cap = cap_ratio_ * overlap_(s), xi = stretch_at(segment, s);
-            return std::min({cap - xi, cap + xi, overlap_(s)});
-          },
-          from, until_);
-      return;
+      return -overlap_(s);
+    case Regime::stick: {  // until the stretch reaches the cap, or the contact opens
+      const double cap = cap_ratio_ * overlap_(s), xi = stretch_at(segment, s);
+      return std::min({cap - xi, cap + xi, overlap_(s)});
+    }
     case Regime::slip:  // until the slip no longer outruns the cap, or the contact opens
-      segment.to = first_crossing(
-          [&](double s) {
-            return std::min(segment.sign * slip_(s) - cap_ratio_ * overlap_rate_(s), overlap_(s));
-          },
-          from, until_);
-      return;
+      return std::min(segment.sign * slip_(s) - cap_ratio_ * overlap_rate_(s), overlap_(s));
   }
+  return overlap_(s);
 }
 
 PlaySegment PlanarPlay::born_at(double at) const {

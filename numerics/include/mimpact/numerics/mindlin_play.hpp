@@ -1,7 +1,11 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cstddef>
+
+#include "mimpact/numerics/root_bracketing.hpp"
 
 // A planar Mindlin spring over one step of an integration that does not stop at its switches
 // (the moving geometry's rough groups, docs/design/moving_geometry.md, "Friction within a
@@ -61,8 +65,9 @@ class PlanarPlay {
  private:
   static constexpr std::size_t kMostSegments = 12;  // the rest of the step keeps the last
   void start(double stretch);
-  // The segment begun at `from` ends at the first share where it switches, or at until_.
-  void close(PlaySegment& segment) const;
+  // > 0 within the segment, crossing 0 at its first switch (a segment ends there, or at
+  // until_)
+  double watched(const PlaySegment& segment, double s) const;
   // the segment that follows one ended at `at` (before until_)
   PlaySegment after(const PlaySegment& ended, double at) const;
   PlaySegment born_at(double at) const;  // the spring born where the contact closes
@@ -80,18 +85,59 @@ constexpr std::array<double, 5> kNodes = {-0.9061798459386640, -0.53846931010568
 constexpr std::array<double, 5> kWeights = {0.2369268850561891, 0.4786286704993665,
                                             0.5688888888888889, 0.4786286704993665,
                                             0.2369268850561891};
+// the 5-point rule on [from, to]: visit(s, weight)
+template <class Visit>
+void gauss_legendre(double from, double to, Visit&& visit) {
+  const double middle = 0.5 * (from + to), half = 0.5 * (to - from);
+  for (std::size_t k = 0; k < kNodes.size(); ++k)
+    visit(middle + half * kNodes[k], half * kWeights[k]);
+}
+
+constexpr int kSamples = 8;         // a segment's search for its first switch, per step
+constexpr double kLocated = 1e-14;  // of the step: how narrowly a switch is located
+
+// The first share in (a, b] where g falls to 0 or below, g (a continuous function) taken as > 0
+// just after a (where a segment begins on its own switch, as a spring born with the cap at 0);
+// b + 1 if it does not.
+template <class Function>
+double first_crossing(Function&& g, double a, double b) {
+  double lower = a, g_lower = std::max(g(a), DBL_MIN);
+  for (int k = 1; k <= kSamples; ++k) {
+    const double upper = k == kSamples ? b : a + (b - a) * k / kSamples;
+    const double g_upper = g(upper);
+    if (g_upper <= 0.0) return narrow_crossing(g, lower, upper, g_lower, g_upper, kLocated).upper;
+    lower = upper;
+    g_lower = g_upper;
+  }
+  return b + 1.0;
+}
+
+// Splits a step into its segments, the first begun (segments[0]): each ends where
+// watched(segment, s) first falls to 0 (its switch) and the next, after(ended, at), begins
+// there, until one reaches `until` or all N are used (the last then keeps the rest of the step).
+// Returns their number.
+template <class Segment, std::size_t N, class Watched, class After>
+std::size_t split_step(std::array<Segment, N>& segments, double until, Watched&& watched,
+                       After&& after) {
+  for (std::size_t count = 1;; ++count) {
+    Segment& segment = segments[count - 1];
+    segment.to = first_crossing([&](double s) { return watched(segment, s); }, segment.from, until);
+    if (segment.to >= until || count == N) {
+      segment.to = until;
+      return count;
+    }
+    segments[count] = after(segment, segment.to);
+  }
+}
 }  // namespace play_detail
 
 template <class Visit>
 void PlanarPlay::quadrature(Visit&& visit) const {
   for (const PlaySegment& segment : *this) {
     if (segment.regime == Regime::open || !(segment.to > segment.from)) continue;
-    const double middle = 0.5 * (segment.from + segment.to);
-    const double half = 0.5 * (segment.to - segment.from);
-    for (std::size_t k = 0; k < play_detail::kNodes.size(); ++k) {
-      const double s = middle + half * play_detail::kNodes[k];
-      visit(s, half * play_detail::kWeights[k], stretch_at(segment, s), segment);
-    }
+    play_detail::gauss_legendre(segment.from, segment.to, [&](double s, double weight) {
+      visit(s, weight, stretch_at(segment, s), segment);
+    });
   }
 }
 
