@@ -11,7 +11,7 @@
 // start-up, neighbour lists included, is not counted); manual time for both; a
 // run under a second is repeated, three in all, and the least time kept (least_time).
 // When /usr/bin/lmp is absent the LAMMPS runs are skipped with a message. A scene with friction
-// (scene 5) gives both codes Mindlin's tangential spring under Coulomb's cap (LAMMPS's
+// (scenes 5 and 6) gives both codes Mindlin's tangential spring under Coulomb's cap (LAMMPS's
 // `tangential mindlin`, kt = 8 G* of the material), its beads spinning; its errors take the
 // larger of a bead's velocity's and r times its spin's (docs/friction.md, section 3).
 // bench/packing_work_precision.py runs this program and writes docs/performance_packings.md.
@@ -62,7 +62,10 @@ const Scene kScenes[] = {
      2.5e-4},
     // friction in the moving geometry (issue 46): the beads spin, their contacts stick and slip
     {"hexagonal 32 x 32, mu 0.3",
-     R"({"type": "hexagonal", "rows": 32, "columns": 32, "radius": 0.005})", "[0, 16]", 1e-3, 0.3}};
+     R"({"type": "hexagonal", "rows": 32, "columns": 32, "radius": 0.005})", "[0, 16]", 1e-3, 0.3},
+    {"fcc 6 x 6 x 6, mu 0.3",
+     R"({"type": "fcc", "layers": 6, "rows": 6, "columns": 6, "radius": 0.005})", "[0, 3, 3]", 3e-4,
+     0.3}};
 constexpr double kYoung = 203e9, kPoisson = 0.3;  // Pa, steel
 constexpr double kLargestStep = 1.6e-6;           // s, LAMMPS's coarsest
 constexpr double kReferenceTolerance = 1e-10;
@@ -85,7 +88,7 @@ std::string scene_text(const Scene& scene, double tolerance) {
 struct Run {
   packings::PackingModel model;
   Eigen::VectorXd velocity;  // per coordinate, at the end time
-  Eigen::VectorXd spin;      // rad/s, per body (about z in the plane), with friction
+  Eigen::VectorXd spin;      // rad/s, with friction: per body about z in the plane, three in space
   double run_time = 0.0;     // s: the run's wall time (lists and integration)
   std::int64_t steps = 0;
   granular::MovingContactsStats work;
@@ -113,15 +116,18 @@ const Run& reference(int scene) {
 }
 
 // RMS and worst of |v - v_ref| / V over the bodies; where they spin, of the larger of that and
-// r |w - w_ref| / V (in the plane)
+// r |w - w_ref| / V
 void set_errors(benchmark::State& state, const packings::PackingModel& model, const Run& run,
                 const Run& reference) {
-  const int d = model.dimension;
-  const bool spins = run.spin.size() == model.body_count() && d == 2;
+  const int d = model.dimension, k = d == 3 ? 3 : 1;  // spin components per body
+  const bool spins = run.spin.size() == k * model.body_count();
   double sum = 0.0, worst = 0.0;
   for (Eigen::Index b = 0; b < model.body_count(); ++b) {
     double error = (run.velocity.segment(d * b, d) - reference.velocity.segment(d * b, d)).norm();
-    if (spins) error = std::max(error, model.radius(b) * std::abs(run.spin(b) - reference.spin(b)));
+    if (spins)
+      error = std::max(
+          error,
+          model.radius(b) * (run.spin.segment(k * b, k) - reference.spin.segment(k * b, k)).norm());
     sum += error * error;
     worst = std::max(worst, error);
   }
@@ -211,10 +217,15 @@ double run_lammps(const packings::PackingModel& model, const Scene& scene, doubl
   }
   if (scene.friction > 0.0) {
     std::ifstream spins(dir / "w.csv");
-    std::getline(spins, line);  // wx,wy,wz
-    out.spin.resize(model.body_count());
-    for (Eigen::Index b = 0; b < model.body_count() && std::getline(spins, line); ++b)
-      out.spin(b) = std::stod(line.substr(line.rfind(',') + 1));  // about z
+    std::getline(spins, line);     // wx,wy,wz
+    const int k = d == 3 ? 3 : 1;  // in the plane, about z only
+    out.spin.resize(k * model.body_count());
+    for (Eigen::Index b = 0; b < model.body_count() && std::getline(spins, line); ++b) {
+      std::istringstream cells(line);
+      std::string cell;
+      for (int c = 0; c < 3 && std::getline(cells, cell, ','); ++c)
+        if (c >= 3 - k) out.spin(k * b + c - (3 - k)) = std::stod(cell);
+    }
   }
   fs::remove_all(dir);
   return loop_time;

@@ -9,8 +9,9 @@ benchmark run. Every number of the page comes from that run.
 
 Scenes (bench_packing_peers.cpp): 0 hexagonal 32 x 32 to 1 ms, 1 hexagonal 56 x 56 to 1.75 ms,
 2 hexagonal 100 x 100 to 3.1 ms, 3 FCC 20 x 20 x 20 to 0.5 ms, 4 FCC 10 x 10 x 10 to 0.25 ms,
-5 hexagonal 32 x 32 with friction (mu 0.3, Mindlin's spring) to 1 ms (docs/performance_friction.md
-is --scenes 5 --page performance_friction). Without LAMMPS (/usr/bin/lmp) its runs are skipped
+5 hexagonal 32 x 32 with friction (mu 0.3, Mindlin's spring) to 1 ms, 6 FCC 6 x 6 x 6 with the
+same friction to 0.3 ms (docs/performance_friction.md is --scenes 5,6 --page
+performance_friction). Without LAMMPS (/usr/bin/lmp) its runs are skipped
 with a message, and the page says so; --install-lammps installs Debian's.
 """
 import argparse

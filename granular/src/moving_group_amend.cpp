@@ -25,13 +25,9 @@ Eigen::Vector3d tangent_of(double normal_x, double normal_y) {
   return planar_tangent({normal_x, normal_y, 0.0}).normalized();
 }
 
-// A spring's contact along the step, as polynomials in its share: the slip times the step (m;
-// in the plane along the tangent, in space its three components), the overlap (m) and the
-// normal.
-struct ContactAlongStep {
-  SpatialPlay::Curve slip, normal;
-  StepPolynomial overlap;
-};
+// A spring's contact along the step, as polynomials in its share (in the plane the slip along
+// the tangent only, slip[0])
+using ContactAlongStep = SpatialPlay::Contact;
 
 // The spring's tangential force integrated along its play (N s): the impulse on the second
 // body, and its moment about the share `share` (the integral of the impulse so far over the
@@ -242,8 +238,10 @@ double MovingGroup::amend_spring(std::size_t j, double share, std::vector<double
     exact = integrate_play(play, along, law, share, h);
     final_stretch(0) = play.final_stretch();
   } else {
-    const SpatialPlay play(along.slip, along.overlap, along.normal, cap_ratio,
-                           Eigen::Vector3d(y0[stretch], y0[stretch + 1], y0[stretch + 2]), share);
+    // the direction of a slip to the steps' own relative tolerance
+    const SpatialPlay play(along, cap_ratio,
+                           Eigen::Vector3d(y0[stretch], y0[stretch + 1], y0[stretch + 2]),
+                           world_.options.ode.relative_tolerance, share);
     exact = integrate_play(play, along, law, share, h);
     final_stretch = play.final_stretch();
   }

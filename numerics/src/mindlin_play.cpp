@@ -72,7 +72,6 @@ double PlanarPlay::stretch_at(const PlaySegment& segment, double s) const {
 }
 
 void PlanarPlay::start(double stretch) {
-  count_ = 1;
   const double overlap = overlap_(0.0);
   if (!(overlap > 0.0)) {
     segments_[0] = {.regime = Regime::open};

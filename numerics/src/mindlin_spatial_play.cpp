@@ -8,6 +8,26 @@ namespace mimpact::numerics::mindlin {
 namespace {
 
 constexpr double kOnTheCap = 1e-9;  // relative: a stretch this near the cap starts on it
+// A Magnus step's error on a piece over which the direction turns at |s| / r_c grows as
+// (h |s| / r_c)^7, kTurnError times it (measured on tests/numerics/test_mindlin_spatial_play.cpp's
+// turning slip): N pieces over a span that turns by at most T take the direction to within e
+// where N >= (kTurnError / e)^(1/6) T^(7/6).
+constexpr double kTurnError = 3.75e-6;
+
+// [[i r, b], [conj(b), -i r]] of su(1,1), r real: the Riccati equation's matrices and their
+// brackets
+struct Su11 {
+  double r = 0.0;
+  std::complex<double> b;
+};
+Su11 operator+(const Su11& x, const Su11& y) { return {x.r + y.r, x.b + y.b}; }
+Su11 operator-(const Su11& x, const Su11& y) { return {x.r - y.r, x.b - y.b}; }
+Su11 operator*(double c, const Su11& x) { return {c * x.r, c * x.b}; }
+// [x, y] = x y - y x
+Su11 bracket(const Su11& x, const Su11& y) {
+  return {2.0 * std::imag(x.b * std::conj(y.b)),
+          std::complex<double>(0.0, 2.0) * (x.r * y.b - y.r * x.b)};
+}
 
 Eigen::Vector3d on_plane(const Eigen::Vector3d& v, const Eigen::Vector3d& unit_normal) {
   return v - v.dot(unit_normal) * unit_normal;
@@ -15,15 +35,16 @@ Eigen::Vector3d on_plane(const Eigen::Vector3d& v, const Eigen::Vector3d& unit_n
 
 }  // namespace
 
-SpatialPlay::SpatialPlay(const Curve& slip, const StepPolynomial& overlap, const Curve& normal,
-                         double cap_ratio, const Eigen::Vector3d& stretch, double until)
-    : slip_(slip),
-      normal_(normal),
-      overlap_(overlap),
-      overlap_rate_(overlap.derivative()),
+SpatialPlay::SpatialPlay(const Contact& contact, double cap_ratio, const Eigen::Vector3d& stretch,
+                         double turn_tolerance, double until)
+    : slip_(contact.slip),
+      normal_(contact.normal),
+      overlap_(contact.overlap),
+      overlap_rate_(contact.overlap.derivative()),
       cap_ratio_(cap_ratio),
-      until_(until) {
-  for (std::size_t k = 0; k < 3; ++k) slip_integral_[k] = slip[k].antiderivative();
+      until_(until),
+      pieces_per_turn_(std::pow(kTurnError / turn_tolerance, 1.0 / 6.0)) {
+  for (std::size_t k = 0; k < 3; ++k) slip_integral_[k] = contact.slip[k].antiderivative();
   start(stretch);
   count_ = play_detail::split_step(
       segments_, until_,
@@ -42,39 +63,41 @@ std::complex<double> SpatialPlay::in_frame(const SpatialSegment& segment, double
 
 std::complex<double> SpatialPlay::turned(const SpatialSegment& segment, std::complex<double> w,
                                          double from, double to) const {
-  using Matrix = Eigen::Matrix2cd;
   const double h = to - from, middle = 0.5 * (from + to), offset = h * std::sqrt(15.0) / 10.0;
-  // A at the three Gauss-Legendre nodes, times h
-  std::array<Matrix, 3> a;
+  // A at the three Gauss-Legendre nodes, times h: (0, a) in su(1,1)
+  std::array<Su11, 3> a;
   for (std::size_t k = 0; k < 3; ++k) {
     const double s = middle + (double(k) - 1.0) * offset, delta = overlap_(s);
     if (!(delta > 0.0) || !(h > 0.0)) return w;  // past the contact's end
-    const std::complex<double> entry = h * in_frame(segment, s) / (2.0 * cap_ratio_ * delta);
-    a[k] << 0.0, entry, std::conj(entry), 0.0;
+    a[k] = {0.0, h * in_frame(segment, s) / (2.0 * cap_ratio_ * delta)};
   }
-  auto bracket = [](const Matrix& x, const Matrix& y) -> Matrix { return x * y - y * x; };
   // the sixth-order Magnus exponent (Blanes, Casas & Ros, BIT 40, 2000)
-  const Matrix alpha_1 = a[1], alpha_2 = std::sqrt(15.0) / 3.0 * (a[2] - a[0]);
-  const Matrix alpha_3 = 10.0 / 3.0 * (a[2] - 2.0 * a[1] + a[0]);
-  const Matrix c_1 = bracket(alpha_1, alpha_2);
-  const Matrix c_2 = -1.0 / 60.0 * bracket(alpha_1, 2.0 * alpha_3 + c_1);
-  const Matrix omega =
-      alpha_1 + alpha_3 / 12.0 + bracket(-20.0 * alpha_1 - alpha_3 + c_1, alpha_2 + c_2) / 240.0;
-  // omega is traceless: omega^2 = mu^2 I, exp(omega) = cosh(mu) I + sinh(mu) / mu omega, taken
-  // up to a common factor (w = u / v): C = cosh(mu), S = sinh(mu) / mu where |Re mu| <= 1, else
-  // C = 1, S = tanh(mu) / mu
-  const std::complex<double> mu = std::sqrt(omega(0, 0) * omega(0, 0) + omega(0, 1) * omega(1, 0));
-  std::complex<double> C = 1.0, S = 1.0;
-  if (std::abs(mu.real()) > 1.0) {
+  const Su11 alpha_1 = a[1], alpha_2 = std::sqrt(15.0) / 3.0 * (a[2] - a[0]);
+  const Su11 alpha_3 = 10.0 / 3.0 * (a[2] - 2.0 * a[1] + a[0]);
+  const Su11 c_1 = bracket(alpha_1, alpha_2);
+  const Su11 c_2 = -1.0 / 60.0 * bracket(alpha_1, 2.0 * alpha_3 + c_1);
+  const Su11 omega = alpha_1 + 1.0 / 12.0 * alpha_3 +
+                     1.0 / 240.0 * bracket(-20.0 * alpha_1 - alpha_3 + c_1, alpha_2 + c_2);
+  // omega^2 = mu^2 I, mu^2 = |b|^2 - r^2 real: exp(omega) = cosh(mu) I + sinh(mu) / mu omega (cos
+  // and sin of |mu| where mu^2 < 0), taken up to a common factor (w = u / v): C = 1, S =
+  // tanh(mu) / mu where mu > 1
+  const double mu_squared = std::norm(omega.b) - omega.r * omega.r;
+  const double mu = std::sqrt(std::abs(mu_squared));
+  double C = 1.0, S = 1.0;
+  if (mu_squared > 1.0) {
     S = std::tanh(mu) / mu;
-  } else if (std::abs(mu) > 0.0) {
+  } else if (mu_squared > 0.0) {
     C = std::cosh(mu);
     S = std::sinh(mu) / mu;
+  } else if (mu_squared < 0.0) {
+    C = std::cos(mu);
+    S = std::sin(mu) / mu;
   }
-  const std::complex<double> u = C * w + S * (omega(0, 0) * w + omega(0, 1));
-  const std::complex<double> v = C + S * (omega(1, 0) * w + omega(1, 1));
-  const std::complex<double> next = u / v;
-  return next / std::abs(next);
+  const std::complex<double> i_r(0.0, omega.r);
+  const std::complex<double> u = C * w + S * (i_r * w + omega.b);
+  const std::complex<double> v = C + S * (std::conj(omega.b) * w - i_r);
+  const std::complex<double> next = u * std::conj(v);  // u / v up to |v|^2
+  return next / std::sqrt(std::norm(next));
 }
 
 std::complex<double> SpatialPlay::direction_at(const SpatialSegment& segment, double s) const {
@@ -108,6 +131,20 @@ void SpatialPlay::add_node(double at, std::complex<double> w) {
   nodes_[node_count_++] = {.at = at, .w = w};
 }
 
+std::size_t SpatialPlay::pieces_for(const SpatialSegment& segment) const {
+  const double span = until_ - segment.from;
+  double turn = 0.0;  // the largest of |s| / r_c at the span's Gauss nodes, times the span
+  for (double node : {-1.0, 0.0, 1.0}) {
+    const double s = segment.from + span * (0.5 + node * std::sqrt(15.0) / 10.0);
+    const double delta = overlap_(s);
+    if (!(delta > 0.0)) return kDirectionPieces;
+    turn = std::max(turn, std::abs(in_frame(segment, s)) / (cap_ratio_ * delta) * span);
+  }
+  const double pieces = std::ceil(pieces_per_turn_ * std::pow(turn, 7.0 / 6.0));
+  return pieces < double(kDirectionPieces) ? std::max(std::size_t(pieces), std::size_t(1))
+                                           : kDirectionPieces;
+}
+
 SpatialSegment SpatialPlay::slip_from(double at, const Eigen::Vector3d& toward) {
   const Eigen::Vector3d n = unit_normal(at);
   SpatialSegment segment{.from = at, .regime = Regime::slip};
@@ -115,10 +152,11 @@ SpatialSegment SpatialPlay::slip_from(double at, const Eigen::Vector3d& toward) 
   segment.across = n.cross(segment.start);
   segment.first_node = node_count_;
   add_node(at, 1.0);
-  const double piece = (until_ - at) / double(kDirectionPieces);
-  for (std::size_t k = 0; k < kDirectionPieces; ++k) {
+  const std::size_t pieces = pieces_for(segment);
+  const double piece = (until_ - at) / double(pieces);
+  for (std::size_t k = 0; k < pieces; ++k) {
     const DirectionNode& last = nodes_[node_count_ - 1];
-    const double next = k + 1 == kDirectionPieces ? until_ : at + double(k + 1) * piece;
+    const double next = k + 1 == pieces ? until_ : at + double(k + 1) * piece;
     add_node(next, turned(segment, last.w, last.at, next));
   }
   segment.nodes = node_count_ - segment.first_node;
@@ -126,7 +164,6 @@ SpatialSegment SpatialPlay::slip_from(double at, const Eigen::Vector3d& toward) 
 }
 
 void SpatialPlay::start(const Eigen::Vector3d& stretch) {
-  count_ = 1;
   const double overlap = overlap_(0.0);
   if (!(overlap > 0.0)) {
     segments_[0] = {.regime = Regime::open};

@@ -12,6 +12,7 @@ namespace mimpact::numerics::mindlin {
 namespace {
 
 using Curve = SpatialPlay::Curve;
+constexpr double kTurnTolerance = 1e-12;  // rad
 
 StepPolynomial polynomial(std::array<double, 6> c) { return {c}; }
 
@@ -39,8 +40,8 @@ TEST(MindlinSpatialPlay, InAPlaneIsThePlanarPlay) {
   const Eigen::Vector3d tangent = normal.cross(Eigen::Vector3d(1.0, 0.0, 0.0)).normalized();
   for (double until : {0.55, 1.0}) {
     const PlanarPlay planar(slip, overlap, c, 0.0, until);
-    const SpatialPlay spatial(along(tangent, slip), overlap, constant(normal), c,
-                              Eigen::Vector3d::Zero(), until);
+    const SpatialPlay spatial({along(tangent, slip), constant(normal), overlap}, c,
+                              Eigen::Vector3d::Zero(), kTurnTolerance, until);
     double planar_integral = 0.0;
     planar.quadrature([&](double, double weight, double xi, const PlaySegment&) {
       planar_integral += weight * xi;
@@ -65,8 +66,8 @@ TEST(MindlinSpatialPlay, TurnsTowardAFixedSlipAsTheClosedForm) {
   for (double ratio : {2.0, 40.0, 4000.0}) {  // |S| / (c D)
     const double size = ratio * c * D;
     const Eigen::Vector3d stretch = c * D * Eigen::Vector3d(std::cos(phi_0), std::sin(phi_0), 0.0);
-    const SpatialPlay play(constant(size * slip_direction), polynomial({D, D}), constant(normal), c,
-                           stretch);
+    const SpatialPlay play({constant(size * slip_direction), constant(normal), polynomial({D, D})},
+                           c, stretch, kTurnTolerance);
     ASSERT_EQ(play.switches(), 0u);
     ASSERT_EQ(play.begin()->regime, Regime::slip);
     double worst = 0.0;
@@ -109,7 +110,7 @@ TEST(MindlinSpatialPlay, FollowsATurningSlipAsItsEquation) {
                       polynomial({0.1e-6, 1e-6, -0.2e-6}), polynomial({0.0})};
   const StepPolynomial overlap = polynomial({1e-6, 0.3e-6, 0.2e-6});
   const Eigen::Vector3d stretch = c * 1e-6 * Eigen::Vector3d(std::cos(0.4), std::sin(0.4), 0.0);
-  const SpatialPlay play(slip, overlap, constant({0.0, 0.0, 1.0}), c, stretch);
+  const SpatialPlay play({slip, constant({0.0, 0.0, 1.0}), overlap}, c, stretch, kTurnTolerance);
   ASSERT_EQ(play.switches(), 0u);
   const double theta = turned_direction(slip, overlap, c, 0.4, 100000);
   const Eigen::Vector3d end = play.final_stretch();

@@ -19,10 +19,11 @@
 //   w' = (z - conj(z) w^2) / (2 r_c),   z = s.e1 + i s.e2,
 // linear in homogeneous coordinates w = u / v: (u, v)' = [[0, a], [conj(a), 0]] (u, v) with
 // a = z / (2 r_c). Its flow is integrated by Magnus's sixth-order exponential (Blanes, Casas &
-// Ros, BIT 40, 2000; Blanes, Casas, Oteo & Ros, Phys. Rep. 470, 2009) over kDirectionPieces
-// equal pieces of the step's rest: where the slip's direction is fixed it reduces to the quadrature
-// of |s| / r_c in the closed form tan(phi/2) = tan(phi_0/2) exp(-int |s| / r_c dt); it keeps |w| =
-// 1 (the matrices are in su(1,1)) and is stable however stiff the turning.
+// Ros, BIT 40, 2000; Blanes, Casas, Oteo & Ros, Phys. Rep. 470, 2009) over equal pieces of
+// the step's rest, as many as its turning and the tolerance ask, at most kDirectionPieces: where
+// the slip's direction is fixed it reduces to the quadrature of |s| / r_c in the closed form
+// tan(phi/2) = tan(phi_0/2) exp(-int |s| / r_c dt); it keeps |w| = 1 (the matrices are in su(1,1))
+// and is stable however stiff the turning.
 namespace mimpact::numerics::mindlin {
 
 inline constexpr std::size_t kDirectionPieces = 32;
@@ -47,13 +48,18 @@ struct SpatialSegment {
 class SpatialPlay {
  public:
   using Curve = std::array<StepPolynomial, 3>;  // a vector's x, y and z
+  // The contact along the step: the slip times the step (m, the stretch's rate in s while it
+  // sticks), tangent to the normal (not necessarily of length 1), and the overlap (m).
+  struct Contact {
+    Curve slip, normal;
+    StepPolynomial overlap;
+  };
 
-  // `slip`: the slip times the step (m, the stretch's rate in s while it sticks), tangent to
-  // `normal` (the contact's normal, not necessarily of length 1); `overlap` (m); `cap_ratio`
-  // c = mu / (lambda eta) (mindlin::terms); `stretch` (m) the stretch at s = 0, taken into the
-  // tangent plane and within the cap there.
-  SpatialPlay(const Curve& slip, const StepPolynomial& overlap, const Curve& normal,
-              double cap_ratio, const Eigen::Vector3d& stretch, double until = 1.0);
+  // `cap_ratio` c = mu / (lambda eta) (mindlin::terms); `stretch` (m) the stretch at s = 0,
+  // taken into the tangent plane and within the cap there; a slip's direction to within
+  // `turn_tolerance` (rad).
+  SpatialPlay(const Contact& contact, double cap_ratio, const Eigen::Vector3d& stretch,
+              double turn_tolerance, double until = 1.0);
 
   Eigen::Vector3d stretch_at(const SpatialSegment& segment, double s) const;  // m, s within it
   Eigen::Vector3d final_stretch() const { return stretch_at(segments_[count_ - 1], until_); }
@@ -77,6 +83,8 @@ class SpatialPlay {
   std::complex<double> turned(const SpatialSegment& segment, std::complex<double> w, double from,
                               double to) const;
   std::complex<double> direction_at(const SpatialSegment& segment, double s) const;
+  // the equal pieces a slip's direction is integrated over, to until_
+  std::size_t pieces_for(const SpatialSegment& segment) const;
   // a slip begun at `at` in the direction `toward` (in the tangent plane there), its direction
   // integrated to until_ into nodes_
   SpatialSegment slip_from(double at, const Eigen::Vector3d& toward);
@@ -90,6 +98,7 @@ class SpatialPlay {
   Curve slip_, normal_, slip_integral_;
   StepPolynomial overlap_, overlap_rate_;
   double cap_ratio_ = 0.0, until_ = 1.0;
+  double pieces_per_turn_ = 1.0;  // (pieces_for)
   std::array<SpatialSegment, kMostSegments> segments_{};
   std::size_t count_ = 0;
   std::array<DirectionNode, kMostNodes> nodes_;
