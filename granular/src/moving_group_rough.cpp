@@ -9,9 +9,9 @@ namespace mimpact::granular {
 
 namespace {
 
-// A planar spring within this share below its cap, pushed outward, slips in the stages
-// (numerics::mindlin::Terms::cap_band); one that slips throughout a step is put on its cap at
-// the step's end (MovingGroup::put_on_caps).
+// A spring within this share below its cap, pushed outward, slips in the stages
+// (numerics::mindlin::Terms::cap_band); in the plane one that slips throughout a step is put on
+// its cap at the step's end (MovingGroup::put_on_caps), in space it is amended.
 constexpr double kCapBand = 1e-3;
 
 Eigen::Vector3d read(const double* y, int count, double scale = 1.0) {
