@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mimpact/common/error.hpp"
 #include "mimpact/kernel/lagrangian_linear_tids.hpp"
@@ -64,6 +65,39 @@ void precompress(ChainModel& model, const ChainScene& scene) {
     model.position(0) = model.position(1) - model.radius(0) - model.radius(1) - left->gap;
 }
 
+// Touching bodies left to right, the first bead at 0; strikers off by their gaps (each within
+// kFarthestGap of the radii), arriving at gap / speed.
+void place_bodies(const ChainScene& scene, ChainModel& model) {
+  const Eigen::Index n = model.radius.size();
+  const StrikerSpec* left = scene.striker(Side::left);
+  const StrikerSpec* right = scene.striker(Side::right);
+  model.first_bead = left ? 1 : 0;
+  model.position(model.first_bead) = 0.0;
+  for (Eigen::Index i = model.first_bead + 1; i < n; ++i)
+    model.position(i) = model.position(i - 1) + model.radius(i - 1) + model.radius(i);
+  auto gap_field = [&](const StrikerSpec* striker) {
+    return "strikers[" + std::to_string(striker - scene.strikers.data()) + "].gap";
+  };
+  if (left) {
+    granular::check_striker_gap(left->gap, model.radius(0) + model.radius(1), gap_field(left));
+    model.position(0) = -(model.radius(0) + model.radius(1)) - left->gap;
+    model.striker_arrivals.push_back(left->gap / left->velocity);
+  }
+  if (right) {
+    granular::check_striker_gap(right->gap, model.radius(n - 1) + model.radius(n - 2),
+                                gap_field(right));
+    model.position(n - 1) += right->gap;
+    model.striker_arrivals.push_back(right->gap / right->velocity);
+  }
+}
+
+// a body by the scene's name: a striker by its side, a bead by its place from the left
+std::string body_name(const ChainScene& scene, const ChainModel& model, Eigen::Index body) {
+  if (body < model.first_bead) return "the left striker";
+  if (scene.striker(Side::right) && body == model.body_count() - 1) return "the right striker";
+  return "bead " + std::to_string(body - model.first_bead);
+}
+
 }  // namespace
 
 ChainModel build_chain_model(const ChainScene& scene, const granular::RunLimits& limits) {
@@ -88,26 +122,21 @@ ChainModel build_chain_model(const ChainScene& scene, const granular::RunLimits&
           " m): " + invalid_value_message("mass", model.mass(i), "a finite mass > 0 kg") +
           "; check the radii, tapers and densities of the scene");
   }
-  // touching bodies left to right, the first bead at 0; strikers off by their gaps
-  const StrikerSpec* left = scene.striker(Side::left);
-  const StrikerSpec* right = scene.striker(Side::right);
-  const Eigen::Index first_bead = left ? 1 : 0;
-  model.position(first_bead) = 0.0;
-  for (Eigen::Index i = first_bead + 1; i < n; ++i)
-    model.position(i) = model.position(i - 1) + model.radius(i - 1) + model.radius(i);
-  if (left) {
-    model.position(0) = -(model.radius(0) + model.radius(1)) - left->gap;
-    model.striker_arrivals.push_back(left->gap / left->velocity);
-  }
-  if (right) {
-    model.position(n - 1) += right->gap;
-    model.striker_arrivals.push_back(right->gap / right->velocity);
-  }
+  place_bodies(scene, model);
 
   std::vector<Eigen::Triplet<double>> gradients;
   // A chain's beads move along its line and do not spin: its contacts never slip, so friction
   // takes no impulse there (docs/model.md, section 16) and the laws leave it out.
-  auto add_law = [&](double stiffness) {
+  // a packing's kTouching, or the rounding of a gap, a difference of positions
+  model.touching_tolerance =
+      std::max(2e-9 * model.radius.maxCoeff(),
+               8.0 * std::numeric_limits<double>::epsilon() * model.position.cwiseAbs().maxCoeff());
+  auto contact_name = [&](Eigen::Index j) {
+    return body_name(scene, model, j) + " and " +
+           (j + 1 < n ? body_name(scene, model, j + 1) : std::string("the wall"));
+  };
+  auto add_law = [&](double stiffness, const granular::Material& a, const granular::Material& b) {
+    granular::check_stiffness(stiffness, contact_name(Eigen::Index(model.laws.size())), a, b);
     model.laws.push_back(scene.contact.law(stiffness));
     model.laws.back().friction = 0.0;
   };
@@ -115,22 +144,23 @@ ChainModel build_chain_model(const ChainScene& scene, const granular::RunLimits&
     gradients.emplace_back(i, i, -1.0);
     gradients.emplace_back(i + 1, i, 1.0);
     add_law(granular::hertz_stiffness(bodies[i].radius, bodies[i].material, bodies[i + 1].radius,
-                                      bodies[i + 1].material));
+                                      bodies[i + 1].material),
+            bodies[i].material, bodies[i + 1].material);
   }
   if (scene.wall) {
     model.has_wall = true;
     model.wall_position = model.position(n - 1) + model.radius(n - 1);
     gradients.emplace_back(n - 1, n - 1, -1.0);
     add_law(granular::hertz_stiffness_wall(bodies[n - 1].radius, bodies[n - 1].material,
-                                           scene.wall->material));
+                                           scene.wall->material),
+            bodies[n - 1].material, scene.wall->material);
   }
-  model.first_bead = first_bead;
   if (scene.precompression > 0.0) precompress(model, scene);
   model.W.resize(n, Eigen::Index(model.laws.size()));
   model.W.setFromTriplets(gradients.begin(), gradients.end());
   model.H = numerics::assemble_delassus(model.W, model.mass.cwiseInverse());
   model.u_minus = model.W.transpose() * model.velocity;
-  granular::check_impact_scales(model);
+  granular::check_impact_scales(model, contact_name);
   return model;
 }
 

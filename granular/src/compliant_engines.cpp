@@ -20,6 +20,11 @@ namespace {
 // tightest tolerances resolve (tests/packings/test_packing_reduction.cpp).
 constexpr double kOverlapResolution = 1e-12;
 
+// what a scene whose overlaps are round-off can do (check_overlap_resolved)
+constexpr const char* kFasterStrikers =
+    "allowed: faster strikers (strikers[].velocity: the overlaps grow with the speed), or the LZB "
+    "impact (\"method\": \"lzb\"), which needs no positions";
+
 // The impact's overlap, or the static one of a precompressed scene struck by nothing.
 double overlap_scale(const ContactModel& model) {
   const double overlap = impact_overlap(model);
@@ -203,12 +208,6 @@ std::unique_ptr<plugins::CompliantIntegrator> kernel_integrator(const ContactMod
   return std::make_unique<plugins::CompliantIntegrator>(options);
 }
 
-kernel::SimulationOptions kernel_options(const ContactModel& model) {
-  kernel::SimulationOptions options;
-  options.penetration_tolerance += model.largest_static_overlap;  // precompressed
-  return options;
-}
-
 // The kernel's CompliantIntegrator over the model's system; the impact starts with the first
 // contact, and a free scene's ends where its last contact opens (a precompressed one's, with the
 // run).
@@ -219,7 +218,7 @@ class KernelEngine : public CompliantEngine {
       : dimension_(model.dimension),
         integrator_(kernel_integrator(model, spec).release()),
         simulation_(std::move(system), std::unique_ptr<plugins::CompliantIntegrator>(integrator_),
-                    {}, kernel_options(model)),
+                    {}, simulation_options(model)),
         watch_(model.precompression > 0.0,
                std::find(model.striker_arrivals.begin(), model.striker_arrivals.end(), 0.0) !=
                    model.striker_arrivals.end()) {
@@ -294,7 +293,13 @@ std::unique_ptr<CompliantEngine> make_compliant_engine(
     const ContactModel& model, std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
     const CompliantSpec& spec) {
   if (spec.geometry == Geometry::moving && model.beads)
-    return std::make_unique<MovingEngine>(model, spec);
+    return std::make_unique<MovingEngine>(model, spec);  // MovingContacts checks its overlaps
+  double largest_coordinate = 0.0;
+  for (Eigen::Index b = 0; b < system->system_count(); ++b)
+    largest_coordinate =
+        std::max(largest_coordinate,
+                 system->system(b).position().head(model.dimension).lpNorm<Eigen::Infinity>());
+  check_overlap_resolved(overlap_scale(model), largest_coordinate, kFasterStrikers);
   return std::make_unique<KernelEngine>(model, std::move(system), spec);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mimpact/common/error.hpp"
 #include "mimpact/numerics/impulse_step_integrator.hpp"
@@ -28,6 +29,12 @@ void split_velocities(const ContactModel& model, const Eigen::VectorXd& generali
   }
 }
 
+kernel::SimulationOptions simulation_options(const ContactModel& model) {
+  kernel::SimulationOptions options;
+  options.penetration_tolerance = 2.0 * model.touching_tolerance + model.largest_static_overlap;
+  return options;
+}
+
 double lone_overlap(const ContactModel& model, Eigen::Index j) {
   const double u = model.u_minus(j);
   const numerics::ContactLaw& law = model.laws[std::size_t(j)];
@@ -37,19 +44,41 @@ double lone_overlap(const ContactModel& model, Eigen::Index j) {
                   1.0 / (1.0 + law.exponent));
 }
 
-void check_impact_scales(const ContactModel& model) {
+void check_impact_scales(const ContactModel& model,
+                         const std::function<std::string(Eigen::Index)>& contact_name) {
   for (Eigen::Index j = 0; j < model.contact_count(); ++j) {
     const double u = model.u_minus(j);
     if (!(u < 0.0)) continue;
     const double energy = 0.5 * u * u / model.H.coeff(j, j);
     if (!(energy >= 1e-250 && energy <= 1e250))
       throw InvalidInput(
-          "contact " + std::to_string(j) +
+          "the contact of " + contact_name(j) +
           " approaches with the energy m u^2 / 2 = " + to_text(energy) + " J (u = " + to_text(u) +
           " m/s, m = " + to_text(1.0 / model.H.coeff(j, j)) +
           " kg); allowed: between 1e-250 and 1e250 J, where double precision resolves the "
-          "impact (check the densities, radii and speeds)");
+          "impact (check the strikers' velocities and the radii and densities)");
   }
+}
+
+void check_overlap_resolved(double overlap, double largest_coordinate, const std::string& advice) {
+  constexpr double kResolvedOverlap = 1e3;
+  const double rounding = largest_coordinate * std::numeric_limits<double>::epsilon();
+  if (!(overlap > kResolvedOverlap * rounding))
+    throw InvalidInput("the impact's overlaps, about " + to_text(overlap) + " m, are within " +
+                       to_text(kResolvedOverlap) +
+                       " rounding errors of the bodies' coordinates (up to " +
+                       to_text(largest_coordinate) +
+                       " m): double precision cannot resolve them where the bodies are; " + advice);
+}
+
+void check_striker_gap(double gap, double reach, const std::string& field) {
+  if (!(gap <= kFarthestGap * reach))
+    throw InvalidInput(invalid_value_message(
+        field, gap,
+        "at most " + to_text(kFarthestGap * reach) +
+            " m, 1e6 times the sum of the striker's and "
+            "its target's radii: farther, the rounding of its flight nears the contacts' touching "
+            "tolerance (1e-9 of the radii)"));
 }
 
 double impact_overlap(const ContactModel& model) {

@@ -139,7 +139,8 @@ ImpactOutcome simulate_impacts(const ContactModel& model,
   kernel::Simulation simulation(
       std::move(system), std::make_unique<plugins::EventDrivenIntegrator>(),
       {.impacts = std::move(impacts),
-       .contact_forces = std::make_unique<plugins::AccelerationLcpProblem>()});
+       .contact_forces = std::make_unique<plugins::AccelerationLcpProblem>()},
+      simulation_options(model));
   const double last_arrival =
       *std::max_element(model.striker_arrivals.begin(), model.striker_arrivals.end());
   Impacts all(model, last_arrival);

@@ -8,6 +8,7 @@
 
 #include "components.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/contact_model.hpp"
 #include "moving_group.hpp"
 #include "moving_world.hpp"
 
@@ -16,14 +17,6 @@
 // its own, checked against each other at the window's end, merged and integrated again where
 // they met, then committed.
 namespace mimpact::granular {
-
-namespace {
-
-// An overlap must span this many rounding errors of the coordinates it is the difference of
-// (three significant digits).
-constexpr double kResolvedOverlap = 1e3;
-
-}  // namespace
 
 MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::Vector3d> velocity,
                                const std::vector<std::pair<std::int32_t, std::int32_t>>& closed,
@@ -85,14 +78,10 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
     largest_coordinate = std::max(largest_coordinate, x.cwiseAbs().maxCoeff());
   for (const Plane& wall : geometry.walls)
     largest_coordinate = std::max(largest_coordinate, wall.point.cwiseAbs().maxCoeff());
-  const double rounding = largest_coordinate * std::numeric_limits<double>::epsilon();
-  if (!(overlap > kResolvedOverlap * rounding))
-    throw Error("moving contacts: the impact's overlaps, about " + to_text(overlap) +
-                " m, are within " + to_text(kResolvedOverlap) +
-                " rounding errors of the bodies' coordinates (up to " +
-                to_text(largest_coordinate) +
-                " m): double precision cannot resolve them where the bodies are; the frozen "
-                "geometry (compliant.geometry \"frozen\") or the LZB impact can");
+  check_overlap_resolved(overlap, largest_coordinate,
+                         "allowed: faster strikers (strikers[].velocity: the overlaps grow with "
+                         "the speed), the frozen geometry (compliant.geometry \"frozen\") or the "
+                         "LZB impact (\"method\": \"lzb\")");
   world_->first_step = 1e-3 * overlap / closing;
   world_->time_scale = overlap / closing;
   world_->mass_scale = geometry.mass.minCoeff();

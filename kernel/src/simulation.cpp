@@ -59,7 +59,7 @@ void Simulation::add_observer(SimulationObserver& observer) {
 void Simulation::schedule_output(double time) {
   if (running_) throw Error("Simulation: schedule_output while the simulation runs");
   check_time(time, "output time");
-  outputs_.push(time);
+  outputs_.add(time, 0.0, 1);
 }
 
 void Simulation::schedule_outputs(double start, double interval, double end) {
@@ -74,8 +74,7 @@ void Simulation::schedule_outputs(double start, double interval, double end) {
                                              ">= (end - start) / " + to_text(kMostOutputs) + " = " +
                                                  to_text((end - start) / kMostOutputs) +
                                                  " s (at most 1e9 outputs)"));
-  for (std::int64_t k = 0; k <= std::int64_t(count); ++k)
-    outputs_.push(start + double(k) * interval);
+  outputs_.add(start, interval, std::int64_t(count) + 1);
 }
 
 namespace {
@@ -148,15 +147,15 @@ void Simulation::start_at(double start) {
   initialized_ = true;
   tell([&](SimulationObserver& o) { o.on_start(*this); });
   // outputs before the start are past; those at the start need no advance
-  while (!outputs_.empty() && outputs_.top() <= start) {
-    if (outputs_.top() == start) tell([&](SimulationObserver& o) { o.on_output(*this); });
+  while (!outputs_.empty() && outputs_.next() <= start) {
+    if (outputs_.next() == start) tell([&](SimulationObserver& o) { o.on_output(*this); });
     outputs_.pop();
   }
 }
 
 bool Simulation::advance(double end) {
   while (time_ < end && !termination_) {
-    const double target = outputs_.empty() ? end : std::min(end, outputs_.top());
+    const double target = outputs_.empty() ? end : std::min(end, outputs_.next());
     const StepReport step = integrator_->advance(target);
     time_ = step.time;
     ++summary_.advances;
@@ -173,7 +172,7 @@ bool Simulation::advance(double end) {
         tell([&](SimulationObserver& o) { o.on_impact(*this, *step.impact); });
       }
     }
-    while (!outputs_.empty() && outputs_.top() <= time_) {
+    while (!outputs_.empty() && outputs_.next() <= time_) {
       outputs_.pop();
       tell([&](SimulationObserver& o) { o.on_output(*this); });
     }

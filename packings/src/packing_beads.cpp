@@ -1,7 +1,9 @@
 #include "packing_beads.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -38,6 +40,31 @@ std::vector<Body> lattice_beads(const LatticeSpec& lattice) {
       }
   }
   return beads;
+}
+
+TouchIndex::TouchIndex(const std::vector<Body>& beads, int dimension, double touching)
+    : touching_(touching) {
+  double largest = 0.0;
+  for (const Body& bead : beads) largest = std::max(largest, bead.radius);
+  std::map<int, std::vector<std::size_t>> by_class;  // class k: radii in (R / 2^(k+1), R / 2^k]
+  for (std::size_t i = 0; i < beads.size(); ++i)
+    by_class[int(std::floor(std::log2(largest / beads[i].radius)))].push_back(i);
+  for (const auto& [k, members] : by_class) {
+    double radius = 0.0;
+    for (std::size_t i : members) radius = std::max(radius, beads[i].radius);
+    RadiusClass& c = classes_.emplace_back(
+        RadiusClass{radius, granular::CellGrid(2.0 * radius * (1.0 + touching), dimension)});
+    for (std::size_t i : members) c.grid.insert(std::int32_t(i), point_of(beads[i].centre));
+  }
+}
+
+std::vector<Eigen::Index> TouchIndex::candidates(const Vector& centre, double radius) const {
+  std::vector<Eigen::Index> found;
+  for (const RadiusClass& c : classes_)
+    c.grid.visit_near(point_of(centre), (radius + c.largest_radius) * (1.0 + touching_),
+                      [&](std::int32_t j) { found.push_back(j); });
+  std::sort(found.begin(), found.end());
+  return found;
 }
 
 double bead_bytes(int dimension) {
@@ -161,10 +188,10 @@ std::vector<Body> listed_beads(const BeadListSpec& list, const std::filesystem::
     const double radius = values[header->dimension];
     if (!(radius > 0.0)) fail(number, invalid_value_message("radius", radius, "> 0 (m)"));
     beads.push_back(bead_of(*header, values, list.material, number));
-    if (beads.size() % 100'000 == 0)
-      granular::check_memory(double(beads.size()) * bead_bytes(header->dimension),
-                             "beads.file (" + std::to_string(beads.size()) + " beads so far)",
-                             limits);
+    const double bytes = double(beads.size()) * bead_bytes(header->dimension);
+    if (bytes > limits.memory_bytes())  // every bead, the message only when it is needed
+      granular::check_memory(
+          bytes, "beads.file (" + std::to_string(beads.size()) + " beads so far)", limits);
   }
   if (beads.empty())
     throw InvalidInput(path.string() + ": the bead list is empty; allowed: at least one bead");

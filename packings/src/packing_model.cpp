@@ -2,30 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <tuple>
 
 #include "mimpact/common/error.hpp"
-#include "mimpact/granular/cell_grid.hpp"
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/kernel/json_document.hpp"
-#include "mimpact/kernel/lagrangian_linear_tids.hpp"
-#include "mimpact/kernel/linear_relation.hpp"
 #include "mimpact/numerics/delassus.hpp"
-#include "mimpact/plugins/lzb_law.hpp"
 #include "packing_beads.hpp"
 
 namespace mimpact::packings {
 
 namespace {
 
-// a centre in three dimensions whatever the packing's (a planar packing's third coordinate is 0)
-Eigen::Vector3d point_of(const Vector& centre) {
-  Eigen::Vector3d at = Eigen::Vector3d::Zero();
-  at.head(centre.size()) = centre;
-  return at;
-}
+// bytes per entry of H = W^T M^-1 W as the runs hold it: its value and index, the triplets it is
+// assembled from and the products of its assembly (3 beads touching 3 000 walls took 965 MB)
+constexpr double kDelassusEntryBytes = 48.0;
 
 std::string bead_name(const PackingModel& model, Eigen::Index body) {
-  if (body >= model.bead_count) return "striker " + std::to_string(body - model.bead_count);
+  if (body >= model.bead_count) return "strikers[" + std::to_string(body - model.bead_count) + "]";
   if (model.columns == 0) return "bead " + std::to_string(body);
   const Eigen::Index row = body / model.columns;
   const std::string layer =
@@ -33,24 +28,6 @@ std::string bead_name(const PackingModel& model, Eigen::Index body) {
   return "bead " + std::to_string(body) + " (" + layer + "row " +
          std::to_string(model.layers > 0 ? row % model.rows : row) + ", column " +
          std::to_string(body % model.columns) + ")";
-}
-
-// The beads by their centres, in cells as wide as two of the largest touch.
-granular::CellGrid index_of(const std::vector<Body>& bodies, double largest_radius, int dimension) {
-  granular::CellGrid grid(2.0 * largest_radius * (1.0 + kTouching), dimension);
-  for (std::size_t i = 0; i < bodies.size(); ++i)
-    grid.insert(std::int32_t(i), point_of(bodies[i].centre));
-  return grid;
-}
-
-// Calls visit(j) for every body j of `grid` whose centre may lie within `reach` of `centre`, by
-// increasing j.
-template <class Visit>
-void near(const granular::CellGrid& grid, const Vector& centre, double reach, Visit&& visit) {
-  std::vector<Eigen::Index> found;
-  grid.visit_near(point_of(centre), reach, [&](std::int32_t j) { found.push_back(j); });
-  std::sort(found.begin(), found.end());
-  for (Eigen::Index j : found) visit(j);
 }
 
 class PackingBuilder {
@@ -80,10 +57,12 @@ class PackingBuilder {
       model_.columns = scene_.lattice->columns;
     }
     for (const Body& body : bodies_) largest_radius_ = std::max(largest_radius_, body.radius);
-    const granular::CellGrid beads = index_of(bodies_, largest_radius_, model_.dimension);
+    const TouchIndex beads(bodies_, model_.dimension, kTouching);
     find_bead_contacts(beads);
     place_walls();
     place_strikers(beads);
+    check_model_memory();
+    model_.touching_tolerance = 2.0 * largest_radius_ * kTouching;
     assemble();
   }
 
@@ -91,9 +70,17 @@ class PackingBuilder {
   // the contact of materials a and b: Hertz's stiffness and their pair's friction
   void add_contact(PackingContact contact, double hertz_stiffness, const granular::Material& a,
                    const granular::Material& b) {
+    granular::check_stiffness(hertz_stiffness, contact_name(contact), a, b);
     model_.contacts.push_back(contact);
     model_.laws.push_back(scene_.contact.law(hertz_stiffness));
     model_.laws.back().friction = scene_.contact.friction_of(a, b);
+  }
+
+  // its bodies by the scene's names: "bead 3 (row 1, column 0) and walls[1]"
+  std::string contact_name(const PackingContact& contact) const {
+    return bead_name(model_, contact.first) + " and " +
+           (contact.second < 0 ? "walls[" + std::to_string(contact.wall) + "]"
+                               : bead_name(model_, contact.second));
   }
 
   // "FILE lines M and N: " where two beads come from a bead list, as its other messages
@@ -123,13 +110,12 @@ class PackingBuilder {
   }
 
   // contacts by their first, then second bead
-  void find_bead_contacts(const granular::CellGrid& beads) {
+  void find_bead_contacts(const TouchIndex& beads) {
     for (Eigen::Index i = 0; i < model_.bead_count; ++i) {
       const Body& bead = bodies_[std::size_t(i)];
-      near(beads, bead.centre, (bead.radius + largest_radius_) * (1.0 + kTouching),
-           [&](Eigen::Index j) {
-             if (j > i) touch(i, j, bead.centre);
-           });
+      beads.visit(bead.centre, bead.radius, [&](Eigen::Index j) {
+        if (j > i) touch(i, j, bead.centre);
+      });
     }
   }
 
@@ -137,7 +123,7 @@ class PackingBuilder {
   void wall_line(const WallSpec& wall, Vector& point, Vector& normal) const {
     if (!wall.side) {
       point = vector_of(wall.point);
-      normal = vector_of(wall.normal).normalized();
+      normal = vector_of(wall.normal).stableNormalized();  // [0, 1e-158] too
       return;
     }
     static const double kNormals[][3] = {{0, 1, 0},  {0, -1, 0}, {1, 0, 0},
@@ -152,12 +138,44 @@ class PackingBuilder {
     point = reach * normal;
   }
 
+  // Two walls on one plane (the same normal, their points within kTouching of the largest
+  // radius along it) are one wall given twice: refused, each would take the same impacts.
+  void check_distinct_walls() const {
+    const std::size_t count = model_.wall_normals.size();
+    std::vector<std::size_t> order(count);
+    std::iota(order.begin(), order.end(), 0);
+    auto key = [&](std::size_t w) {
+      const Vector& n = model_.wall_normals[w];
+      return std::make_tuple(n(0), n(1), n.size() > 2 ? n(2) : 0.0, n.dot(model_.wall_points[w]));
+    };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+    std::size_t first = count, again = count;  // the duplicate of lowest index, and its original
+    for (std::size_t k = 1; k < count; ++k) {
+      const std::size_t a = order[k - 1], b = order[k];
+      const Vector& n = model_.wall_normals[a];
+      if ((n - model_.wall_normals[b]).lpNorm<Eigen::Infinity>() <= 1e-15 &&
+          std::abs(n.dot(model_.wall_points[b] - model_.wall_points[a])) <=
+              kTouching * largest_radius_ &&
+          std::max(a, b) < again)
+        std::tie(first, again) = std::minmax(a, b);
+    }
+    if (again < count)
+      throw InvalidInput("walls[" + std::to_string(again) + "] is walls[" + std::to_string(first) +
+                         "] again (the same plane); allowed: distinct walls");
+  }
+
   void place_walls() {
     for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
       Vector point, normal;
       wall_line(scene_.walls[w], point, normal);
       model_.wall_points.push_back(point);
       model_.wall_normals.push_back(normal);
+    }
+    check_distinct_walls();
+    for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
+      const Vector& point = model_.wall_points[w];
+      const Vector& normal = model_.wall_normals[w];
       for (Eigen::Index i = 0; i < model_.bead_count; ++i) {
         const Body& bead = bodies_[std::size_t(i)];
         const double distance = normal.dot(bead.centre - point);
@@ -177,7 +195,7 @@ class PackingBuilder {
 
   // A striker touches its target at arrival, placed back along its velocity by its gap; it
   // touches any other bead it reaches there, and may overlap none.
-  void place_strikers(const granular::CellGrid& beads) {
+  void place_strikers(const TouchIndex& beads) {
     for (std::size_t s = 0; s < scene_.strikers.size(); ++s) {
       const StrikerSpec& spec = scene_.strikers[s];
       const std::string name = "strikers[" + std::to_string(s) + "]";
@@ -187,8 +205,9 @@ class PackingBuilder {
             name + ".target[0]", spec.target[0],
             "a bead in [0, " + std::to_string(model_.bead_count) + "): aimed at nothing"));
       const Vector velocity = vector_of(spec.velocity);
-      const Vector direction = velocity.normalized();
+      const Vector direction = velocity.stableNormalized();
       const Body& aimed = bodies_[std::size_t(target)];
+      granular::check_striker_gap(spec.gap, spec.radius + aimed.radius, name + ".gap");
       const Vector arrival = aimed.centre + arrival_offset(spec, aimed.radius, direction, name);
       const Eigen::Index body = Eigen::Index(bodies_.size());
       bodies_.push_back({arrival - spec.gap * direction, spec.radius, spec.material, velocity});
@@ -196,10 +215,10 @@ class PackingBuilder {
         bodies_.back().spin.tail(spec.spin.size()) =
             Eigen::Map<const Eigen::VectorXd>(spec.spin.data(), Eigen::Index(spec.spin.size()));
       largest_radius_ = std::max(largest_radius_, spec.radius);
-      model_.striker_arrivals.push_back(spec.gap / velocity.norm());
-      near(beads, arrival, (spec.radius + largest_radius_) * (1.0 + kTouching),
-           [&](Eigen::Index j) { touch_striker(body, j, arrival, name); });
-      check_striker_place(body, name);
+      model_.striker_arrivals.push_back(spec.gap / velocity.stableNorm());
+      beads.visit(arrival, spec.radius,
+                  [&](Eigen::Index j) { touch_striker(body, j, arrival, name); });
+      check_striker_place(beads, body, name);
     }
   }
 
@@ -246,9 +265,41 @@ class PackingBuilder {
                 s.material);
   }
 
-  // where a striker starts: in no wall, on no other striker
-  void check_striker_place(Eigen::Index striker, const std::string& name) const {
+  // The model's memory before it is assembled: its bodies and contacts, and H = W^T M^-1 W,
+  // an entry for every two contacts that share a body (a bead ringed by n others: n^2).
+  void check_model_memory() const {
+    std::vector<double> contacts_of(bodies_.size(), 0.0);
+    for (const PackingContact& c : model_.contacts) {
+      contacts_of[std::size_t(c.first)] += 1.0;
+      if (c.second >= 0) contacts_of[std::size_t(c.second)] += 1.0;
+    }
+    double entries = 0.0;
+    for (double n : contacts_of) entries += n * n;
+    granular::check_memory(granular::model_bytes(double(bodies_.size()),
+                                                 double(model_.contacts.size()), model_.dimension) +
+                               kDelassusEntryBytes * entries,
+                           "the packing (" + std::to_string(bodies_.size()) + " bodies, " +
+                               std::to_string(model_.contacts.size()) + " contacts, " +
+                               to_text(entries) + " pairs of contacts sharing a body)",
+                           limits_);
+  }
+
+  // where a striker starts: in no wall, in no bead (touching within kTouching), on no other
+  // striker
+  void check_striker_place(const TouchIndex& beads, Eigen::Index striker,
+                           const std::string& name) const {
     const Body& s = bodies_[std::size_t(striker)];
+    beads.visit(s.centre, s.radius, [&](Eigen::Index j) {
+      const Body& b = bodies_[std::size_t(j)];
+      const double reach = s.radius + b.radius, distance = (b.centre - s.centre).stableNorm();
+      if (distance < reach * (1.0 - kTouching))
+        throw InvalidInput(
+            name +
+            ".gap = " + to_text(scene_.strikers[std::size_t(striker - model_.bead_count)].gap) +
+            " m starts it " + to_text(reach - distance) + " m into " + bead_name(model_, j) +
+            " (back along its velocity from where it touches its target); allowed: a gap that "
+            "starts it clear of the beads");
+    });
     for (std::size_t w = 0; w < model_.wall_points.size(); ++w)
       if (model_.wall_normals[w].dot(s.centre - model_.wall_points[w]) < s.radius)
         throw InvalidInput(name + " starts in walls[" + std::to_string(w) +
@@ -302,7 +353,8 @@ class PackingBuilder {
       throw InvalidInput(
           "no striker approaches its target: the packing is struck by nothing; allowed: a "
           "striker whose velocity points at the bead it targets");
-    granular::check_impact_scales(model_);
+    granular::check_impact_scales(
+        model_, [&](Eigen::Index c) { return contact_name(model_.contacts[std::size_t(c)]); });
     model_.beads = std::make_shared<const granular::BeadGeometry>(bead_geometry());
     add_rotation();
   }
@@ -383,115 +435,6 @@ Eigen::Index body_of_target(const PackingModel& model, const std::vector<int>& t
   if (model.columns == 0) return target[0];
   if (model.layers == 0) return Eigen::Index(target[0]) * model.columns + target[1];
   return (Eigen::Index(target[0]) * model.rows + target[1]) * model.columns + target[2];
-}
-
-namespace {
-
-// A body's coordinates in the kernel: its translations, then its rotation when the bodies turn
-// (an angle about z in the plane, a rotation vector in space: the impact sees their velocities
-// only).
-std::shared_ptr<kernel::LagrangianLinearTIDS> kernel_body(const PackingModel& model,
-                                                          Eigen::Index b) {
-  const int d = model.dimension;
-  const int r = model.rotation ? model.rotation->components : 0;
-  kernel::LagrangianLinearTIDS::Matrices matrices;
-  Eigen::VectorXd diagonal(d + r), q = Eigen::VectorXd::Zero(d + r), v(d + r);
-  diagonal.head(d).setConstant(model.mass(d * b));
-  q.head(d) = model.position.row(b).transpose();
-  v.head(d) = model.of(model.velocity, b);
-  if (r > 0) {
-    diagonal.tail(r).setConstant(model.rotation->inertia(b));
-    v.tail(r) = model.rotation->of(model.rotation->angular_velocity, b);
-  }
-  matrices.mass = diagonal.asDiagonal();
-  return std::make_shared<kernel::LagrangianLinearTIDS>(q, v, matrices,
-                                                        "body " + std::to_string(b));
-}
-
-// Contact c's tangent rows over its bodies' kernel coordinates (Rotation's W_t and R_t).
-Eigen::MatrixXd kernel_tangents(const PackingModel& model, std::size_t c,
-                                std::initializer_list<Eigen::Index> bodies) {
-  if (!model.rotation) return {};
-  const granular::Rotation& rotation = *model.rotation;
-  const int d = model.dimension, r = rotation.components;
-  const Eigen::Index first = rotation.tangential.first_row[c];
-  Eigen::MatrixXd rows(rotation.tangential.rows_of(Eigen::Index(c)),
-                       Eigen::Index(bodies.size()) * (d + r));
-  for (Eigen::Index row = 0; row < rows.rows(); ++row) {
-    Eigen::Index column = 0;
-    for (Eigen::Index b : bodies) {
-      for (int k = 0; k < d; ++k) rows(row, column++) = rotation.W_t.coeff(d * b + k, first + row);
-      for (int k = 0; k < r; ++k) rows(row, column++) = rotation.R_t.coeff(r * b + k, first + row);
-    }
-  }
-  return rows;
-}
-
-}  // namespace
-
-std::shared_ptr<kernel::NonSmoothDynamicalSystem> build_packing_system(const PackingModel& model) {
-  auto system = std::make_shared<kernel::NonSmoothDynamicalSystem>();
-  std::vector<std::shared_ptr<kernel::DynamicalSystem>> bodies;
-  for (Eigen::Index b = 0; b < model.body_count(); ++b) {
-    bodies.push_back(kernel_body(model, b));
-    system->add(bodies.back());
-  }
-  const int coordinates = int(bodies.front()->dimension());
-  for (std::size_t c = 0; c < model.contacts.size(); ++c) {
-    const PackingContact& contact = model.contacts[c];
-    const Vector& n_c = contact.normal;
-    auto law = std::make_shared<plugins::LzbLaw>(model.laws[c]);
-    const std::string name = "contact " + std::to_string(c);
-    if (contact.second < 0) {
-      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(coordinates);
-      row.head(n_c.size()) = n_c.transpose();
-      auto relation = std::make_shared<kernel::LinearRelation>(
-          row, -contact.rest, kernel_tangents(model, c, {contact.first}));
-      system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
-                                                        relation, law, name));
-    } else {
-      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(2 * coordinates);
-      row.head(n_c.size()) = -n_c.transpose();
-      row.segment(coordinates, n_c.size()) = n_c.transpose();
-      auto relation = std::make_shared<kernel::LinearRelation>(
-          row, -contact.rest, kernel_tangents(model, c, {contact.first, contact.second}));
-      system->add(std::make_shared<kernel::Interaction>(bodies[std::size_t(contact.first)],
-                                                        bodies[std::size_t(contact.second)],
-                                                        relation, law, name));
-    }
-  }
-  return system;
-}
-
-Vector momentum(const PackingModel& model, const Eigen::VectorXd& velocity) {
-  Vector total = Vector::Zero(model.dimension);
-  for (Eigen::Index b = 0; b < model.body_count(); ++b)
-    total += model.mass(model.dimension * b) * model.of(velocity, b);
-  return total;
-}
-
-Vector angular_momentum(const PackingModel& model, const Eigen::VectorXd& velocity,
-                        const Eigen::VectorXd& angular_velocity, double time,
-                        const Eigen::VectorXd& position) {
-  const int d = model.dimension;
-  Eigen::Vector3d total = Eigen::Vector3d::Zero();
-  for (Eigen::Index b = 0; b < model.body_count(); ++b) {
-    const Vector at =
-        position.size() > 0
-            ? model.of(position, b)
-            : Vector(model.position.row(b).transpose() + model.of(model.velocity, b) * time);
-    total += model.mass(d * b) * point_of(at).cross(point_of(model.of(velocity, b)));
-    if (angular_velocity.size() == 0) continue;
-    const double inertia = model.rotation->inertia(b);
-    if (d == 2)
-      total.z() += inertia * angular_velocity(b);
-    else
-      total += inertia * Eigen::Vector3d(angular_velocity.segment<3>(3 * b));
-  }
-  if (d == 3) return total;
-  Vector about_z(1);
-  about_z(0) = total.z();
-  return about_z;
 }
 
 }  // namespace mimpact::packings

@@ -1,5 +1,6 @@
 #include "mimpact/packings/packing_scene.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -30,10 +31,9 @@ std::string type_name(LatticeType type) {
   return "?";
 }
 
+// the length of a vector of any finite components (a scaled norm: [0, 1e-170] is not 0)
 double norm(const std::vector<double>& value) {
-  double sum = 0.0;
-  for (double x : value) sum += x * x;
-  return std::sqrt(sum);
+  return Eigen::Map<const Eigen::VectorXd>(value.data(), Eigen::Index(value.size())).stableNorm();
 }
 
 std::string vector_text(const std::vector<double>& value) {
@@ -234,7 +234,7 @@ void check_dimension(const PackingScene& scene, int dimension) {
     if (dimension == 3 && !striker.offset.empty()) {
       // the offset lies across the path: its share along the velocity is round-off
       const Eigen::Vector3d offset(striker.offset.data()), velocity(striker.velocity.data());
-      if (std::abs(offset.dot(velocity)) > 1e-9 * offset.norm() * velocity.norm())
+      if (std::abs(offset.stableNormalized().dot(velocity.stableNormalized())) > 1e-9)
         checks.fail(path + ".offset = " + vector_text(striker.offset) +
                     " is not perpendicular to its velocity " + vector_text(striker.velocity) +
                     "; allowed: an offset across the striker's path (offset . velocity = 0)");

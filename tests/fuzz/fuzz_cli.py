@@ -375,6 +375,20 @@ def generated(recipe):
         document, _ = load_seed(HERE / "corpus" / "chain" / "c1_impulse_steps.json")
         document["strikers"][0]["side"] = "l" * int(argument)
         return dump(document)
+    if kind == "bead_row":  # bead_row:N:D: N touching beads of radius 5 mm along x, in D dims
+        count, dimension = (int(a) for a in argument.split(":"))
+        header = "x,y,radius" if dimension == 2 else "x,y,z,radius"
+        zeros = ",0" * (dimension - 1)
+        return header + "\n" + "".join(f"{0.01 * i!r}{zeros},0.005\n" for i in range(count))
+    if kind == "ring":  # ring:N: a bead of radius 1 m ringed by N touching beads pi / N wide
+        count = int(argument)
+        small = math.pi / count * 0.999
+        rows = ["x,y,radius", "0,0,1.0"]
+        for k in range(count):
+            angle = 2.0 * math.pi * k / count
+            rows.append(f"{(1.0 + small) * math.cos(angle)!r},"
+                        f"{(1.0 + small) * math.sin(angle)!r},{small!r}")
+        return "\n".join(rows) + "\n"
     raise ValueError(f"unknown recipe {recipe!r}")
 
 

@@ -3,6 +3,7 @@
 // integrator, the law check, the registry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mimpact/common/error.hpp"
@@ -180,6 +181,24 @@ TEST(SimulationLoop, OutputsEventsAndImpactsInTimeOrder) {
   EXPECT_NEAR(recorder.positions[3], 1.3, 1e-12);
   EXPECT_EQ(recorder.starts, 1);
   EXPECT_EQ(recorder.ends, 1);
+}
+
+// Issue 47 item 9: the documented maximum of 1e9 outputs is a series held as one entry (it was
+// 1e9 doubles, 8 GB, and std::bad_alloc); outputs of two series interleave in time order.
+TEST(SimulationLoop, ScheduleOfTheMostOutputsIsBoundedInMemory) {
+  Simulation simulation(one_body(std::make_shared<TestLaw>()),
+                        std::make_unique<PeriodicImpacts>(0.3),
+                        {.impacts = std::make_unique<ReversingImpacts>(),
+                         .contact_forces = std::make_unique<NoForces>()});
+  simulation.schedule_outputs(0.0, 1e-9, 1.0);  // 1e9 + 1 outputs: allowed
+  simulation.schedule_outputs(0.0, 2.5e-7, 1e-6);
+  EXPECT_THROW(simulation.schedule_outputs(0.0, 1e-10, 1.0), InvalidInput);  // 1e10
+  Recorder recorder;
+  simulation.add_observer(recorder);
+  simulation.run(0.0, 1.0005e-6);
+  ASSERT_EQ(recorder.outputs.size(), 1001u + 5u);  // 0, 1e-9, ... 1e-6, and 0, 2.5e-7, ...
+  EXPECT_TRUE(std::is_sorted(recorder.outputs.begin(), recorder.outputs.end()));
+  EXPECT_NEAR(recorder.outputs.back(), 1e-6, 1e-21);
 }
 
 TEST(SimulationLoop, TerminateEndsTheRunAfterTheCurrentAdvance) {

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "mimpact/granular/bead_geometry.hpp"
 #include "mimpact/granular/rotation.hpp"
+#include "mimpact/kernel/simulation.hpp"
 #include "mimpact/numerics/contact_law.hpp"
 
 namespace mimpact::granular {
@@ -32,6 +34,9 @@ struct ContactModel {
   // N: a constant force presses the bodies together; they start at their static overlaps
   double precompression = 0.0;
   double largest_static_overlap = 0.0;  // m: the compliant contacts start this far in
+  // m: bodies this close to touching are in contact, a share of the largest sum of radii (the
+  // scene's lengths: a packing of beads of radius 1e6 m has gaps of 1e-9 m by rounding)
+  double touching_tolerance = 1e-9;
   // the bodies as spheres, for the compliant contacts in the moving geometry (a packing); none
   // for a chain, whose gaps are exactly linear
   std::shared_ptr<const BeadGeometry> beads;
@@ -42,6 +47,10 @@ struct ContactModel {
   Eigen::Index body_count() const { return mass.size() / dimension; }
   Eigen::Index contact_count() const { return Eigen::Index(laws.size()); }
 };
+
+// The kernel simulation's options for the model: gaps down to twice its touching tolerance and
+// its static overlaps are contacts at the start.
+kernel::SimulationOptions simulation_options(const ContactModel& model);
 
 // Kinetic energy (J) of the bodies moving with `velocity` (per coordinate).
 double kinetic_energy(const ContactModel& model, const Eigen::VectorXd& velocity);
@@ -72,7 +81,22 @@ double natural_impulse(const ContactModel& model);
 // Throws InvalidInput when an approaching contact's natural energy, m u^2 / 2 with m = 1 / H_jj,
 // leaves [1e-250, 1e250] J: the integrators' tolerances are this energy times factors down to
 // 1e-44, which must stay normal doubles (a packing of beads of density 1e-300 never ended).
-void check_impact_scales(const ContactModel& model);
+// The message names the contact's bodies by contact_name(j), the scene's names.
+void check_impact_scales(const ContactModel& model,
+                         const std::function<std::string(Eigen::Index)>& contact_name);
+
+// Throws InvalidInput unless overlaps of `overlap` (m) span 1e3 rounding errors (three
+// significant digits) of coordinates up to `largest_coordinate` (m): gaps are differences of
+// coordinates, and a contact pressed less than their rounding runs on round-off (a chain struck
+// at 1e-20 m/s stored 1e-33 J at rest). `advice` ends the message: what the scene can change.
+void check_overlap_resolved(double overlap, double largest_coordinate, const std::string& advice);
+
+// Throws InvalidInput naming `field` (a striker's gap, m) unless it is at most kFarthestGap
+// times `reach`, the sum of the striker's and its target's radii (m): farther, the rounding of
+// the striker's flight, gap x 2.2e-16, nears the contacts' touching tolerance, 1e-9 of the radii
+// (a gap of 1e300 m ended on a singular contact problem, one of 1e308 on an infinite end time).
+constexpr double kFarthestGap = 1e6;
+void check_striker_gap(double gap, double reach, const std::string& field);
 
 // Throws InvalidInput naming `field` unless the principal impulse step delta_p (N s) can
 // resolve the impact: finite, below the smallest momentum m V (a coarser step resolves no

@@ -29,6 +29,12 @@ double bead_mass(double radius, const Material& material);
 // E* with 1/E* = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2.
 double effective_modulus(const Material& a, const Material& b);
 
+// Throws InvalidInput naming `contact` and the materials' Young's moduli unless `stiffness`
+// (a Hertz stiffness of materials a and b) is a finite normal double: a subnormal modulus makes
+// K = 0, which no impact resolves.
+void check_stiffness(double stiffness, const std::string& contact, const Material& a,
+                     const Material& b);
+
 // Hertz stiffness K = (4/3) sqrt(R*) E* of two spheres (1/R* = 1/R_1 + 1/R_2), so that
 // F = K delta^(3/2) (Johnson, "Contact Mechanics", 1985, section 4.2).
 double hertz_stiffness(double radius_a, const Material& a, double radius_b, const Material& b);

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <queue>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +14,7 @@
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 #include "mimpact/kernel/one_step_integrator.hpp"
 #include "mimpact/kernel/one_step_ns_problem.hpp"
+#include "mimpact/kernel/output_times.hpp"
 
 namespace mimpact::kernel {
 
@@ -126,7 +126,7 @@ class Simulation {
   SimulationProblems problems_;
   SimulationOptions options_;
   std::vector<SimulationObserver*> observers_;
-  std::priority_queue<double, std::vector<double>, std::greater<double>> outputs_;
+  OutputTimes outputs_;
   double time_ = 0.0;
   std::atomic<bool> running_ = false;  // within a call of initialize, advance_to or finish
   bool initialized_ = false;           // from initialize to finish
