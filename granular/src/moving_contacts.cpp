@@ -142,8 +142,10 @@ double MovingContacts::advance(double target) {
   while (time_ < target && !ended()) {
     double end = std::min(target, time_ + window_);
     double extended = std::min(target, time_ + extended_window_);
+    // with nothing loaded, the bodies fly to a short window before the next meeting, which finds
+    // it with any other meeting of the same instant (a mirror pair's, a rounding later)
     if (world_->loaded_ids.empty())
-      end = extended = std::min(target, std::max(end, next_meeting(target)));
+      end = extended = std::min(target, std::max(end, next_meeting(target) - shortest_window_));
     if (!(end > time_))
       throw Error("moving contacts: a window of " + to_text(window_) +
                   " s no longer moves t = " + to_text(time_) +
@@ -151,6 +153,14 @@ double MovingContacts::advance(double target) {
                   "length resolves (check the speeds and stiffnesses, or end_time)");
     run_window(end, extended);
     std::tie(window_, extended_window_) = next_windows();
+    // a window is a loop of the run too: with the groups' steps, within max_steps
+    if (world_->stats.steps + world_->stats.windows > world_->options.max_steps)
+      throw BudgetSpent(
+          "moving contacts: max_steps = " + std::to_string(world_->options.max_steps) +
+              " time steps and windows taken by t = " + to_text(time_) +
+              " s (compliant.max_steps in a scene): " + std::to_string(world_->stats.windows) +
+              " windows, " + std::to_string(world_->stats.steps) + " steps",
+          time_);
   }
   return time_;
 }

@@ -18,6 +18,16 @@ class InvalidInput : public Error {
   using Error::Error;
 };
 
+// A run that spent the work its caller allowed (a budget of steps) by `time` (s), before its end.
+class BudgetSpent : public Error {
+ public:
+  BudgetSpent(const std::string& message, double time) : Error(message), time_(time) {}
+  double time() const { return time_; }
+
+ private:
+  double time_;
+};
+
 // The shortest text that reads back as the same double: 1e-09, not 0.000000 or
 // 1.0000000000000001e-09.
 std::string to_text(double value);

@@ -88,7 +88,12 @@ class MovingContacts {
   // The group of the window before that committed most of `members`, taken from
   // previous_groups_ (null if none is left).
   std::unique_ptr<MovingGroup> take_previous_group(const std::vector<std::int32_t>& members);
+  // With nothing loaded: when the next window ends (moving_meetings.cpp)
   double next_meeting(double target) const;
+  double listed_meeting(double horizon) const;
+  double flight_meeting(double horizon, double fastest) const;
+  static constexpr double kFlightHorizonGrowth = 4.0;
+  static constexpr double kFlightCandidates = 16.0;  // pairs a free-flight search visits, per body
   // s: the lengths of the next window, and of the same window if one group integrates it
   std::pair<double, double> next_windows() const;
   void note_moving(std::int32_t body);

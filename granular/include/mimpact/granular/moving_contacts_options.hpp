@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "mimpact/common/fields.hpp"
 #include "mimpact/numerics/ode_options.hpp"
@@ -22,7 +23,10 @@ struct MovingContactsOptions {
   double overlap_resolution = 1e-12;
   // m: the neighbour lists' skin; 0: a fifth of the smallest radius
   double skin = 0.0;
-  std::int64_t max_steps = 10'000'000;  // time steps of all groups, before the run is abandoned
+  // time steps of all groups and windows (every loop of the run), before it is abandoned
+  std::int64_t max_steps = 10'000'000;
+  // the bodies those steps carried, summed: a caller's budget of work (the configuration check's)
+  std::int64_t max_body_steps = std::numeric_limits<std::int64_t>::max();
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {

@@ -1,8 +1,10 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -88,7 +90,10 @@ struct CompliantSpec {
   std::optional<double> end_time;  // s; required with a precompression
   Gaps gaps = Gaps::open;
   Geometry geometry = Geometry::moving;
-  std::int64_t max_steps = 10'000'000;  // time steps before the run is abandoned
+  // time steps (and the moving geometry's windows) before the run is abandoned
+  std::int64_t max_steps = 10'000'000;
+  // not a scene field: a caller's budget of work in the moving geometry (MovingContactsOptions)
+  std::int64_t max_body_steps = std::numeric_limits<std::int64_t>::max();
 
   // The loosest tolerance where the frozen geometry integrates (a chain, or compliant.geometry
   // "frozen"): above it the frozen integrator leaves out overlaps below 10 tolerance^(2 / (1 +
