@@ -15,7 +15,7 @@ namespace {
 // The check's budget: the moving geometry may carry bodies over this many steps for every
 // contact step of the LZB run (ordinary scenes take 0.4 to 2.1: docs/limits.md), and at least
 // kLeastBodySteps (about 0.1 s).
-constexpr std::int64_t kWorkShare = 5;
+constexpr std::int64_t kWorkShare = 3;
 constexpr std::int64_t kLeastBodySteps = 100'000;
 
 std::string short_text(double value) {

@@ -128,6 +128,16 @@ RecordingBudget compliant_budget(const ContactModel& model, const RecordSpec& re
                          sampling_fields(record, true, frame_every));
 }
 
+// The event-driven motion's tolerances at the scene's scales: a contact is closed within the
+// penetration tolerance of its gap (a share of the radii: a lattice of radius 1e6 m has gaps of
+// 1e-9 m by rounding), and impacts when it approaches faster than 1e-9 of the fastest approach.
+plugins::EventDrivenOptions event_options(const ContactModel& model) {
+  plugins::EventDrivenOptions options;
+  options.gap_tolerance = simulation_options(model).penetration_tolerance;
+  options.velocity_tolerance = 1e-9 * model.u_minus.cwiseAbs().maxCoeff();
+  return options;
+}
+
 }  // namespace
 
 ImpactOutcome simulate_impacts(const ContactModel& model,
@@ -137,7 +147,7 @@ ImpactOutcome simulate_impacts(const ContactModel& model,
   auto impacts = std::make_unique<plugins::LzbImpactProblem>(options);
   impacts->set_impact_observer(observer);
   kernel::Simulation simulation(
-      std::move(system), std::make_unique<plugins::EventDrivenIntegrator>(),
+      std::move(system), std::make_unique<plugins::EventDrivenIntegrator>(event_options(model)),
       {.impacts = std::move(impacts),
        .contact_forces = std::make_unique<plugins::AccelerationLcpProblem>()},
       simulation_options(model));

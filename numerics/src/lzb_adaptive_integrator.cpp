@@ -295,16 +295,27 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
   auto rhs = [this](const State& y, State& dydt, double) { derivative(y, dydt); };
 
   std::int64_t restarts = 0;
+  const std::int64_t most_events =
+      std::max(LzbAdaptiveOptions::kLeastEvents,
+               options.events_per_contact * std::int64_t(shared_.law.delta_scale.size()));
   double t = 0.0;
   while (true) {
-    if (steps_ + restarts >= options.max_steps) {
+    if (steps_ + restarts >= options.max_steps || restarts >= most_events) {
       account_work(ode_.state());
       end_segment(ode_.state());
       finish(ode_.time(), result);
       result.status = ImpactStatus::step_limit;
       result.message =
-          "the impact did not end within max_steps = " + std::to_string(options.max_steps) +
-          " steps and restarts";
+          restarts >= most_events
+              ? "the impact did not end within " + std::to_string(most_events) +
+                    " located events (events_per_contact = " +
+                    std::to_string(options.events_per_contact) +
+                    " a contact, at least 100000) by t = " + to_text(ode_.time()) +
+                    " s of the impact: bodies rattle between others without their events "
+                    "thinning out; raise events_per_contact (impact.events_per_contact in a "
+                    "scene) to go on, or give the rattling bodies the mass they need"
+              : "the impact did not end within max_steps = " + std::to_string(options.max_steps) +
+                    " steps and restarts";
       if (observer) notify(result.duration, nullptr, *observer);
       return;
     }

@@ -44,7 +44,8 @@ struct LzbImpactOptions {
   // system) serve the adaptive integrator too. Their delta_p and relative_delta_p are the ones
   // above.
   numerics::LzbOptions impulse_steps;
-  // The adaptive integrator's sample_interval and within_steps_from (its other options come
+  // The adaptive integrator's sample_interval, within_steps_from and events_per_contact (its
+  // other options come
   // from the fields above).
   numerics::LzbAdaptiveOptions adaptive;
 
@@ -59,11 +60,11 @@ struct LzbImpactOptions {
                                          if (name != "delta_p" && name != "relative_delta_p")
                                            field(name, value, allowed...);
                                        });
-    numerics::LzbAdaptiveOptions::visit_fields(
-        self.adaptive, [&](std::string_view name, auto& value, auto&&... allowed) {
-          if (name == "sample_interval" || name == "within_steps_from")
-            field(name, value, allowed...);
-        });
+    numerics::LzbAdaptiveOptions::visit_fields(self.adaptive, [&](std::string_view name,
+                                                                  auto& value, auto&&... allowed) {
+      if (name == "sample_interval" || name == "within_steps_from" || name == "events_per_contact")
+        field(name, value, allowed...);
+    });
   }
 
   LzbIntegrator chosen_integrator() const {
