@@ -71,6 +71,11 @@ class Impact {
   void sample_until(double t, ImpactObserver& observer);
   void notify(double t, const State* y, ImpactObserver& observer);
   void finish(double t, ImpactResult& result);
+  // why the impact stops before its end (its steps or its events spent), or empty
+  std::string budget_spent(const LzbAdaptiveOptions& options, std::int64_t restarts,
+                           std::int64_t most_events) const;
+  // ends the impact where it is, with status step_limit and `message`
+  void stop_at_budget(const std::string& message, ImpactObserver* observer, ImpactResult& result);
 
   ImpactState shared_;  // H, the contacts and the segment, shared with within_ and friction_
   DenseOutput ode_;

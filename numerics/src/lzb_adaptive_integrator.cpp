@@ -276,6 +276,32 @@ void adaptive_lzb::Impact::finish(double t, ImpactResult& result) {
   result.duration = t;
 }
 
+std::string adaptive_lzb::Impact::budget_spent(const LzbAdaptiveOptions& options,
+                                               std::int64_t restarts,
+                                               std::int64_t most_events) const {
+  if (restarts >= most_events)
+    return "the impact did not end within " + std::to_string(most_events) +
+           " located events (events_per_contact = " + std::to_string(options.events_per_contact) +
+           " a contact, at least 100000) by t = " + to_text(ode_.time()) +
+           " s of the impact: bodies rattle between others without their events thinning out; "
+           "raise events_per_contact (impact.events_per_contact in a scene) to go on, or give "
+           "the rattling bodies the mass they need";
+  if (steps_ + restarts >= options.max_steps)
+    return "the impact did not end within max_steps = " + std::to_string(options.max_steps) +
+           " steps and restarts";
+  return "";
+}
+
+void adaptive_lzb::Impact::stop_at_budget(const std::string& message, ImpactObserver* observer,
+                                          ImpactResult& result) {
+  account_work(ode_.state());
+  end_segment(ode_.state());
+  finish(ode_.time(), result);
+  result.status = ImpactStatus::step_limit;
+  result.message = message;
+  if (observer) notify(result.duration, nullptr, *observer);
+}
+
 void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
                                const LzbAdaptiveOptions& options, ImpactSampler& sampler,
                                ImpactObserver* observer, ImpactResult& result) {
@@ -300,23 +326,9 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
                options.events_per_contact * std::int64_t(shared_.law.delta_scale.size()));
   double t = 0.0;
   while (true) {
-    if (steps_ + restarts >= options.max_steps || restarts >= most_events) {
-      account_work(ode_.state());
-      end_segment(ode_.state());
-      finish(ode_.time(), result);
-      result.status = ImpactStatus::step_limit;
-      result.message =
-          restarts >= most_events
-              ? "the impact did not end within " + std::to_string(most_events) +
-                    " located events (events_per_contact = " +
-                    std::to_string(options.events_per_contact) +
-                    " a contact, at least 100000) by t = " + to_text(ode_.time()) +
-                    " s of the impact: bodies rattle between others without their events "
-                    "thinning out; raise events_per_contact (impact.events_per_contact in a "
-                    "scene) to go on, or give the rattling bodies the mass they need"
-              : "the impact did not end within max_steps = " + std::to_string(options.max_steps) +
-                    " steps and restarts";
-      if (observer) notify(result.duration, nullptr, *observer);
+    const std::string spent = budget_spent(options, restarts, most_events);
+    if (!spent.empty()) {
+      stop_at_budget(spent, observer, result);
       return;
     }
     const double step_start = ode_.time();
