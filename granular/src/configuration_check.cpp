@@ -57,6 +57,14 @@ ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOu
   for (Eigen::Index b = 0; b < bodies; ++b)
     check.speed = std::max(check.speed, model.velocity.segment(b * d, d).norm());
 
+  for (const numerics::ContactLaw& law : model.laws)
+    if (law.restitution < kLeastPackingRestitution) {
+      check.not_made =
+          "the moving geometry takes restitution >= " + short_text(kLeastPackingRestitution) +
+          " in a packing, and it is " + short_text(law.restitution) +
+          " here (below it the beads' outcome as they move is ill-conditioned)";
+      return check;
+    }
   CompliantSpec moving;
   moving.tolerance = check.tolerance;
   moving.end_time = check.time;

@@ -106,19 +106,49 @@ def test_item4_max_memory_is_checked_at_every_listed_bead(cli, tmp_path):
 
 
 def test_item5_the_default_configuration_check_is_bounded_and_says_why(cli, tmp_path):
+    # a check at 1e-10 after an LZB run at 1e-4: more than 3 times the LZB run's work
     scene = {"material": STEEL,
-             "lattice": {"type": "hexagonal", "rows": 3, "columns": 3, "radius": 0.005},
-             "strikers": [{"target": [0, 1], "radius": 0.005, "velocity": [0.0, 1.0]}],
-             "contact": {"model": "bi-stiffness", "restitution": 1e-6},
-             "impact": {"integrator": "adaptive", "tolerance": 1e-8}}
+             "lattice": {"type": "hexagonal", "rows": 6, "columns": 6, "radius": 0.005},
+             "strikers": [{"target": [0, 3], "radius": 0.005, "velocity": [0.0, 1.0]}],
+             "contact": {"model": "bi-stiffness", "restitution": 0.5},
+             "impact": {"integrator": "adaptive", "tolerance": 1e-4},
+             "configuration_check": {"tolerance": 1e-10}}
     with pytest.warns(UserWarning, match="could not be made"):
         check = mimpact.run_packing(scene).summary["configuration_check"]
     assert "3 times the LZB run's work" in check["not_made"]
+    assert "configuration_check.enabled false" in check["not_made"]
     assert check["holds"] is False
     done, summary = run_cli(cli, "packing", scene, tmp_path)
     assert done.returncode == 0
     assert summary["configuration_check"]["not_made"] == check["not_made"]
     assert "could not be made" in done.stderr or done.stderr == ""
+
+
+def small_restitution(restitution, method):
+    return {"material": STEEL,
+            "lattice": {"type": "hexagonal", "rows": 3, "columns": 3, "radius": 0.005},
+            "strikers": [{"target": [0, 1], "radius": 0.005, "velocity": [0.0, 1.0]}],
+            "contact": {"model": "bi-stiffness", "restitution": restitution},
+            "method": method, "impact": {"integrator": "adaptive", "tolerance": 1e-8}}
+
+
+def test_small_restitution_is_refused_in_packings_compliant_contacts(cli, tmp_path):
+    # below 0.2 a packing's compliant outcome is ill-conditioned in its data
+    # (PackingConvergence.SmallRestitutionBound measures it); LZB takes any e
+    for restitution in (0.0, 1e-6, 0.1, 0.19):
+        scene = small_restitution(restitution, "compliant")
+        with pytest.raises(ValueError, match=r"contact.restitution = .* allowed: restitution >= 0.2"):
+            mimpact.run_packing(scene)
+        where = tmp_path / str(restitution)
+        where.mkdir()
+        done, _ = run_cli(cli, "packing", scene, where)
+        assert done.returncode != 0 and "contact.restitution" in done.stderr
+        assert not (where / "out").exists()
+    assert mimpact.run_packing(small_restitution(0.2, "compliant")).summary["status"] == "terminated"
+    # the LZB run's check in the moving geometry is not made, and says why, at once
+    with pytest.warns(UserWarning, match="could not be made"):
+        check = mimpact.run_packing(small_restitution(1e-6, "lzb")).summary["configuration_check"]
+    assert "takes restitution >= 0.2" in check["not_made"] and "1e-06" in check["not_made"]
 
 
 def flight(end_time):

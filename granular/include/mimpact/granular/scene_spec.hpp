@@ -173,6 +173,14 @@ struct ContactSpec {
   }
 };
 
+// The least restitution of a packing's compliant contacts: below it their outcome is
+// ill-conditioned in the scene's data, and as e -> 0 touching beads collide again and again; the
+// LZB method takes any e (docs/limits.md, "Small restitution").
+inline constexpr double kLeastPackingRestitution = 0.2;
+// Refuses a packing's compliant contacts below kLeastPackingRestitution, naming
+// contact.restitution.
+void check_packing_restitution(const ContactSpec& contact, const SceneChecks& checks);
+
 // A scene file's JSON: parse_json_document's limits, and its messages naming the file, line,
 // column and field.
 kernel::JsonDocument parse_scene_document(std::string_view text, const std::string& source);
