@@ -68,9 +68,15 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
   // it. A window lasts about eight steps of its largest group, within [0.5 overlap / closing,
   // that bound], or longer where one group integrates it (next_windows)
   list_bound_ = 0.25 * world_->lists.skin() / world_->speed_bound;
-  const double quickest_contact = (elastic ? 3.9 : 1.95) * overlap / closing;
-  longest_window_ = std::min(0.6 * quickest_contact, list_bound_);
-  shortest_window_ = std::min(0.5 * overlap / closing, list_bound_);
+  contact_time_ = overlap / closing;
+  contact_steps_ = elastic ? 3.9 : 1.95;
+  mass_exponent_ = 1.0 / (1.0 + eta);
+  shortest_window_ = std::min(0.5 * contact_time_, list_bound_);
+  by_mass_.resize(world_->bodies.size());
+  std::iota(by_mass_.begin(), by_mass_.end(), 0);
+  std::stable_sort(by_mass_.begin(), by_mass_.end(), [&](std::int32_t a, std::int32_t b) {
+    return geometry.mass(a) < geometry.mass(b);
+  });
   window_ = extended_window_ = shortest_window_;
   // the gaps are differences of coordinates: their rounding must leave the overlaps digits
   double largest_coordinate = 0.0;
@@ -192,10 +198,24 @@ std::pair<double, double> MovingContacts::next_windows() const {
     }
   if (!largest) return {shortest_window_, shortest_window_};  // a group that starts steps short
   const double steps = kWindowSteps * largest->last_step();
-  const double window = std::clamp(steps, shortest_window_, longest_window_);
-  return {window, count == 1 ? std::clamp(steps, shortest_window_,
-                                          std::min(3.0 * world_->time_scale, list_bound_))
-                             : window};
+  const auto [longest, longest_alone] = window_caps();
+  const double window = std::clamp(steps, shortest_window_, longest);
+  return {window, count == 1 ? std::clamp(steps, shortest_window_, longest_alone) : window};
+}
+
+std::pair<double, double> MovingContacts::window_caps() const {
+  const double contact_time = contact_time_near();
+  return {std::min(0.6 * (contact_steps_ * contact_time), list_bound_),
+          std::min(3.0 * contact_time, list_bound_)};
+}
+
+double MovingContacts::contact_time_near() const {
+  const NeighbourLists& lists = world_->lists;
+  const Eigen::VectorXd& mass = world_->geometry.mass;
+  for (std::int32_t b : by_mass_)
+    if (!lists.bodies_near(b).empty() || !lists.walls_near(b).empty())
+      return contact_time_ * std::pow(mass(b) / mass(by_mass_.front()), mass_exponent_);
+  return std::numeric_limits<double>::infinity();
 }
 
 MovingGroup& MovingContacts::new_group() {
@@ -224,6 +244,11 @@ std::unique_ptr<MovingGroup> MovingContacts::take_previous_group(
 
 void MovingContacts::run_window(double end, double extended) {
   refresh_lists(extended);
+  if (!world_->loaded_ids.empty()) {  // a light body the lists now bring near shortens it
+    const auto [longest, longest_alone] = window_caps();
+    end = std::min(end, time_ + longest);
+    extended = std::max(end, std::min(extended, time_ + longest_alone));
+  }
   previous_groups_ = std::move(groups_);
   groups_.clear();
   form_groups(extended);  // groups formed for a longer window only take more bodies

@@ -176,6 +176,31 @@ def test_item6_free_flight_costs_events_not_windows(cli, tmp_path):
         mimpact.run_packing(fast)
 
 
+def test_item6_a_light_body_far_from_all_does_not_shorten_the_windows(cli, tmp_path):
+    # fuzz_cli.py --seed 2 input 478: a striker of a thousandth of the beads' radius bounces off
+    # a rough packing and flies away; its contacts, the quickest of the scene, bounded every
+    # window of the packing's faint wave (1e7 windows and steps, past 20 s). A body with nothing
+    # in its lists begins no contact: it bounds no window.
+    scene = {"material": STEEL,
+             "lattice": {"type": "hexagonal", "rows": 3, "columns": 4, "radius": 0.005},
+             "walls": [{"side": "left"}],
+             "strikers": [{"target": [0, 2], "radius": 5e-6, "velocity": [0.3, 1.0],
+                           "offset": 0.002, "spin": -100}],
+             "contact": {"restitution": 1.0, "friction": 0.3}, "method": "compliant",
+             "compliant": {"tolerance": 1e-7, "geometry": "moving"}}
+    run = mimpact.run_packing(scene).summary
+    assert run["moving_geometry"]["windows"] < 200_000
+    assert run["moving_geometry"]["body_steps"] < 1_000_000
+    # back off the packing, then off the left wall (e = 1): most of its speed, some of it
+    # turned to spin and slip
+    striker = run["post_impact_velocities"][-1]
+    assert striker[0] > 0.8 and striker[1] < -0.4
+    energy = run["energy"]
+    assert energy["kinetic_after"] + energy["rotational_after"] < energy["kinetic_before"]
+    done, summary = run_cli(cli, "packing", scene, tmp_path)
+    assert done.returncode == 0 and summary["moving_geometry"] == run["moving_geometry"]
+
+
 def test_item7_rattling_stops_at_its_event_budget(cli, tmp_path):
     beads = "x,y,radius\n" + "".join(f"{2e-12 * i!r},0,1e-12\n" for i in range(6))
     (tmp_path / "beads.csv").write_text(beads)

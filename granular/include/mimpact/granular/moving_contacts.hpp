@@ -96,6 +96,13 @@ class MovingContacts {
   static constexpr double kFlightCandidates = 16.0;  // pairs a free-flight search visits, per body
   // s: the lengths of the next window, and of the same window if one group integrates it
   std::pair<double, double> next_windows() const;
+  // s: overlap / closing of the quickest contact that may begin within the next window, of the
+  // lightest body with a neighbour in its lists at the fastest speed (a body with none begins
+  // no contact while it stays within its list's ball, which the window keeps)
+  double contact_time_near() const;
+  // s: the longest window that quickest contact and the lists allow, and the longest that one
+  // group may integrate alone
+  std::pair<double, double> window_caps() const;
   void note_moving(std::int32_t body);
 
   // the bodies, the contacts' records, the lists and the scales its groups share
@@ -107,7 +114,11 @@ class MovingContacts {
   double time_ = 0.0;
   double window_ = 0.0;           // s, of the next window
   double extended_window_ = 0.0;  // s, of the next window if one group integrates it
-  double longest_window_ = 0.0, shortest_window_ = 0.0;  // s
+  double shortest_window_ = 0.0;  // s
+  // overlap / closing (s) of the two lightest bodies at twice the fastest speed, growing as the
+  // mass^mass_exponent_ of the lighter; a contact lasts at least contact_steps_ of it
+  double contact_time_ = 0.0, mass_exponent_ = 0.0, contact_steps_ = 0.0;
+  std::vector<std::int32_t> by_mass_;  // the bodies, lightest first
   double list_bound_ = 0.0;  // s: no body leaves its list's ball within a window this long
 };
 
