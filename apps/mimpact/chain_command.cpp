@@ -1,5 +1,3 @@
-#include <unistd.h>
-
 #include <boost/program_options.hpp>
 #include <cmath>
 #include <cstdio>
@@ -21,26 +19,6 @@ namespace mimpact::cli {
 namespace po = boost::program_options;
 
 namespace {
-
-// Reports the impulse steps on stderr while a long impact runs, every two million steps.
-class ProgressReporter : public numerics::ImpactObserver {
- public:
-  void observe(const numerics::ImpactSample& sample) override {
-    const std::int64_t mark = sample.step / 2'000'000;
-    if (mark == last_mark_) return;
-    last_mark_ = mark;
-    std::fprintf(stderr, "\r  %lld impulse steps, t = %.6g s", (long long)sample.step, sample.time);
-    std::fflush(stderr);
-    reported_ = true;
-  }
-  ~ProgressReporter() override {
-    if (reported_) std::fputc('\n', stderr);
-  }
-
- private:
-  std::int64_t last_mark_ = 0;
-  bool reported_ = false;
-};
 
 // LZB's relative error is 1 to 13 times delta_p / (m V) on the chains of docs/performance.md:
 // past 1 % of the striker's momentum the outcome is off by percents.
@@ -180,12 +158,13 @@ int chain_command(const std::vector<std::string>& arguments) {
         granular::impulse_step(model, scene.impact, granular::impact_labels(overrides));
     warn_if_coarse(delta_p, granular::smallest_momentum(model), quiet);
   }
-  ProgressReporter progress;
   granular::SceneRunOptions run_options;
   run_options.record = writes_series;
   run_options.limits = limits;
-  run_options.progress = !quiet && isatty(STDERR_FILENO) ? &progress : nullptr;
+  const std::unique_ptr<granular::ProgressMeter> progress = progress_line(quiet);
+  run_options.progress = progress.get();
   granular::SceneRun run = chains::run_chain_scene(scene, model, run_options);
+  if (progress) progress->finish();
   const granular::ImpactOutcome& impact = run.impact;
   const granular::TimeSeries& series = run.series;
   nlohmann::ordered_json summary = chains::run_summary(model, run);

@@ -1,5 +1,8 @@
 #include "command_line.hpp"
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <iostream>
 
 namespace mimpact::cli {
@@ -23,6 +26,11 @@ bool parse_command_line(const std::vector<std::string>& arguments, po::options_d
     throw po::error("missing the " + positional_name + " argument (--help for usage)");
   po::notify(values);
   return true;
+}
+
+std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet) {
+  if (quiet || !isatty(STDERR_FILENO)) return nullptr;
+  return std::make_unique<granular::ProgressMeter>(granular::stream_sink(stderr));
 }
 
 }  // namespace mimpact::cli

@@ -1,8 +1,11 @@
 #pragma once
 
 #include <boost/program_options.hpp>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "mimpact/granular/progress_meter.hpp"
 
 namespace mimpact::cli {
 
@@ -13,5 +16,9 @@ bool parse_command_line(const std::vector<std::string>& arguments,
                         boost::program_options::options_description& visible,
                         const std::string& positional_name, std::string& positional,
                         boost::program_options::variables_map& values);
+
+// The progress line of a long run on stderr, in place: null with --quiet or when stderr is not
+// a terminal.
+std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet);
 
 }  // namespace mimpact::cli

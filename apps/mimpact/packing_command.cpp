@@ -75,7 +75,10 @@ int packing_command(const std::vector<std::string>& arguments) {
   run_options.impact = overrides;
   run_options.record = recording && !out.empty();
   run_options.limits = limits;
+  const std::unique_ptr<granular::ProgressMeter> progress = progress_line(quiet);
+  run_options.progress = progress.get();
   const granular::SceneRun run = packings::run_packing_scene(scene, model, run_options);
+  if (progress) progress->finish();
   const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
   if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
   if (run.configuration && !run.configuration->holds())  // even when quiet: the model is wrong

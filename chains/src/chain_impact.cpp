@@ -76,7 +76,7 @@ granular::ImpactOutcome simulate_chain_impact_numerics(const ChainModel& model,
 granular::CompliantRun simulate_chain_compliant(const ChainModel& model,
                                                 const granular::CompliantSpec& spec,
                                                 const granular::RecordSpec& record) {
-  return granular::simulate_compliant(model, build_chain_system(model), spec, record);
+  return granular::simulate_compliant(model, build_chain_system(model), spec, {.record = record});
 }
 nlohmann::ordered_json chain_summary(const ChainModel& model, const granular::ImpactOutcome& impact,
                                      std::optional<double> delta_p,

@@ -6,6 +6,7 @@
 
 #include "mimpact/granular/contact_model.hpp"
 #include "mimpact/granular/moving_contacts_stats.hpp"
+#include "mimpact/granular/progress_meter.hpp"
 #include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/kernel/non_smooth_dynamical_system.hpp"
 
@@ -41,6 +42,8 @@ class CompliantEngine {
 
   // Integrates to `t` (s, >= time()), or until ended().
   virtual void advance_to(double t) = 0;
+  // Tells `progress` (null: nothing) where it is as it integrates.
+  virtual void set_progress(ProgressMeter* progress) = 0;
   // Ends the run: what follows is final.
   virtual void finish() {}
   virtual double time() const = 0;

@@ -119,6 +119,7 @@ class MovingEngine : public CompliantEngine {
         dimension_(model.dimension) {}
 
   void advance_to(double t) override { motion_.advance(t); }
+  void set_progress(ProgressMeter* progress) override { motion_.set_progress(progress); }
   double time() const override { return motion_.time(); }
   bool ended() const override { return motion_.ended(); }
   double force(Eigen::Index contact) const override {
@@ -204,6 +205,8 @@ class ContactWatch : public kernel::SimulationObserver {
 
   kernel::EventStatus on_step(const kernel::Simulation& s,
                               const kernel::StepReport& step) override {
+    steps_ += step.smooth_steps;
+    if (progress_) progress_->report({.time = step.time, .steps = steps_});
     if (!step.closing.empty() && first_contact_ < 0.0) first_contact_ = step.time;
     if (!step.detaching.empty()) last_opening_ = step.time;
     if (!precompressed_ && first_contact_ >= 0.0 &&
@@ -214,6 +217,7 @@ class ContactWatch : public kernel::SimulationObserver {
     return kernel::EventStatus::proceed();
   }
 
+  void set_progress(ProgressMeter* progress) { progress_ = progress; }
   bool precompressed() const { return precompressed_; }
   bool ended() const { return ended_; }
   double first_contact() const { return first_contact_; }
@@ -222,6 +226,8 @@ class ContactWatch : public kernel::SimulationObserver {
  private:
   bool precompressed_, ended_ = false;
   double first_contact_ = -1.0, last_opening_ = -1.0;
+  std::int64_t steps_ = 0;
+  ProgressMeter* progress_ = nullptr;
 };
 
 std::unique_ptr<plugins::CompliantIntegrator> kernel_integrator(const ContactModel& model,
@@ -255,6 +261,7 @@ class KernelEngine : public CompliantEngine {
   }
 
   void advance_to(double t) override { simulation_.advance_to(t); }
+  void set_progress(ProgressMeter* progress) override { watch_.set_progress(progress); }
   void finish() override { summary_ = simulation_.finish(); }
   double time() const override { return simulation_.time(); }
   bool ended() const override { return watch_.ended(); }

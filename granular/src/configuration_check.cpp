@@ -46,7 +46,7 @@ std::string ConfigurationCheck::describe() const {
 
 ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOutcome& lzb,
                                        const ConfigurationCheckSpec& spec, double default_accuracy,
-                                       const RunLimits& limits) {
+                                       const RunLimits& limits, ProgressMeter* progress) {
   if (!model.beads) throw Error("configuration check: the model has no beads to move");
   ConfigurationCheck check;
   check.accuracy = spec.accuracy.value_or(default_accuracy);
@@ -73,7 +73,8 @@ ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOu
   const auto start = std::chrono::steady_clock::now();
   CompliantRun run;
   try {
-    run = simulate_compliant(model, nullptr, moving, {}, 0, limits);
+    if (progress) progress->begin("configuration check", check.time);
+    run = simulate_compliant(model, nullptr, moving, {.limits = limits, .progress = progress});
   } catch (const BudgetSpent& spent) {
     check.not_made = "the moving geometry would take more than " + std::to_string(kWorkShare) +
                      " times the LZB run's work (" + std::to_string(moving.max_body_steps) +

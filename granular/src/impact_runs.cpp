@@ -313,11 +313,12 @@ void assemble(const CompliantEngine& engine, const ContactModel& model, Complian
 
 CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
-                                const CompliantSpec& spec, const RecordSpec& record,
-                                int frame_every, const RunLimits& limits) {
+                                const CompliantSpec& spec, const CompliantRunOptions& options) {
+  const RecordSpec& record = options.record;
+  const int frame_every = options.frame_every;
   const double end = spec.end_time.value_or(1.0);
   const bool recording = !record.contacts.empty() || !record.bodies.empty() || frame_every > 0;
-  RecordingBudget budget = compliant_budget(model, record, frame_every, limits);
+  RecordingBudget budget = compliant_budget(model, record, frame_every, options.limits);
   if (recording) {
     // samples from t = 0 to the first arrival and through the shortest possible impact
     const double samples =
@@ -329,6 +330,7 @@ CompliantRun simulate_compliant(const ContactModel& model,
   const auto clock = std::chrono::steady_clock::now();
   const std::unique_ptr<CompliantEngine> engine =
       make_compliant_engine(model, std::move(system), spec);
+  engine->set_progress(options.progress);
   CompliantRun run;
   run.series.contacts = record.contacts;
   run.series.bodies = record.bodies;

@@ -159,6 +159,10 @@ double MovingContacts::advance(double target) {
                   "length resolves (check the speeds and stiffnesses, or end_time)");
     run_window(end, extended);
     std::tie(window_, extended_window_) = next_windows();
+    if (progress_)
+      progress_->report({.time = time_,
+                         .steps = world_->stats.steps,
+                         .contacts = std::int64_t(world_->loaded_ids.size())});
     // a window is a loop of the run too: with the groups' steps, within max_steps
     if (world_->stats.steps + world_->stats.windows > world_->options.max_steps)
       throw BudgetSpent(

@@ -1,5 +1,6 @@
 #include "mimpact/granular/scene_run.hpp"
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,25 @@ class Observers : public numerics::ImpactObserver {
   std::vector<numerics::ImpactObserver*> observers_;
 };
 
+// Hands the LZB samples to a progress meter.
+class ProgressObserver : public numerics::ImpactObserver {
+ public:
+  explicit ProgressObserver(ProgressMeter* meter) : meter_(meter) {}
+  void observe(const numerics::ImpactSample& sample) override {
+    meter_->report(
+        {.time = sample.time, .steps = sample.step, .impulse = sample.principal_impulse});
+  }
+
+ private:
+  ProgressMeter* meter_;
+};
+
+// Where the run samples nothing for its record, it samples for its progress line: the impulse
+// steps every kProgressSteps steps, the adaptive integrator kProgressSamples times in the
+// shortest impact the model may have; one contact each (the samples change no step).
+constexpr std::int64_t kProgressSteps = 65'536;
+constexpr double kProgressSamples = 4.0;
+
 SceneRun run_lzb(const ContactModel& model,
                  std::shared_ptr<kernel::NonSmoothDynamicalSystem> system, const SceneRunSpec& spec,
                  const SceneRunOptions& options, plugins::LzbImpactOptions impact, bool record) {
@@ -42,10 +62,16 @@ SceneRun run_lzb(const ContactModel& model,
     recorder.configure(impact);
     observers.add(&recorder);
   } else if (options.progress) {
-    impact.impulse_steps.sample_every = options.progress_every;
+    impact.impulse_steps.sample_every = kProgressSteps;
     impact.impulse_steps.sampled_contacts = {0};
+    if (impact.adaptive.sample_interval == 0.0)
+      impact.adaptive.sample_interval = impact_duration_bound(model) / kProgressSamples;
   }
-  observers.add(options.progress);
+  ProgressObserver progress(options.progress);
+  if (options.progress) {
+    options.progress->begin("LZB impact");
+    observers.add(&progress);
+  }
   run.impact =
       simulate_impacts(model, std::move(system), impact, observers.empty() ? nullptr : &observers);
   if (record) {
@@ -73,13 +99,19 @@ SceneRun run_scene(const ContactModel& model,
       const double accuracy = impact.chosen_integrator() == plugins::LzbIntegrator::adaptive
                                   ? impact.adaptive_tolerance()
                                   : kImpulseStepAccuracy;
-      run.configuration = check_configuration(model, run.impact, *check, accuracy, options.limits);
+      run.configuration = check_configuration(model, run.impact, *check, accuracy, options.limits,
+                                              options.progress);
     }
     return run;
   }
+  if (options.progress)
+    options.progress->begin("compliant contacts", spec.compliant.end_time.value_or(
+                                                      std::numeric_limits<double>::quiet_NaN()));
   CompliantRun compliant = simulate_compliant(model, std::move(system), spec.compliant,
-                                              record ? spec.record : RecordSpec{},
-                                              record ? spec.frame_every : 0, options.limits);
+                                              {.record = record ? spec.record : RecordSpec{},
+                                               .frame_every = record ? spec.frame_every : 0,
+                                               .limits = options.limits,
+                                               .progress = options.progress});
   SceneRun run;
   run.method = Method::compliant;
   run.impact = std::move(compliant.impact);

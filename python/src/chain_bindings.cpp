@@ -51,20 +51,23 @@ py::object read_scene(const py::object& path_argument) {
 void check_scene(const py::object& scene) { chains::build_chain_model(load_scene(scene)); }
 
 ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p,
-                      double max_memory) {
+                      double max_memory, bool progress) {
   const chains::ChainScene scene = load_scene(scene_argument);
   const granular::RunLimits limits = memory_limits(max_memory);
   granular::SceneRun run;
   nlohmann::ordered_json summary;
+  const std::unique_ptr<granular::ProgressMeter> meter = progress_meter(progress);
   {
     py::gil_scoped_release computing;
     const chains::ChainModel model = chains::build_chain_model(scene, limits);
     granular::SceneRunOptions options;
     options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
     options.limits = limits;
+    options.progress = meter.get();
     run = chains::run_chain_scene(scene, model, options);
     summary = chains::run_summary(model, run);
   }
+  if (meter) meter->finish();
   ChainResult result;
   result.fill(run, summary);
   result.post_impact_velocities = run.impact.velocity_after;
@@ -199,10 +202,11 @@ void bind_chain_result(py::module_& module) {
 void bind_chain_runs(py::module_& module) {
   module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
              py::arg("delta_p") = py::none(),
-             py::arg("max_memory") = granular::RunLimits{}.memory_gb,
+             py::arg("max_memory") = granular::RunLimits{}.memory_gb, py::arg("progress") = false,
              "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
              "the method it chooses; delta_p (N s) overrides the scene's impulse step; a run "
-             "that would hold more than max_memory GB is refused before it starts.");
+             "that would hold more than max_memory GB is refused before it starts; with "
+             "progress=True a run longer than 2 s shows where it is on sys.stderr.");
   module.def("read_scene", &read_scene, py::arg("path"),
              "a scene file (JSON, // comments allowed) as a dict, checked like run_chain()'s");
   module.def("check_scene", &check_scene, py::arg("scene"),

@@ -71,7 +71,7 @@ py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies, int di
 }
 
 PackingResult run_packing(const py::object& scene_argument, std::optional<double> delta_p,
-                          const py::object& data_dir, double max_memory) {
+                          const py::object& data_dir, double max_memory, bool progress) {
   packings::PackingScene scene = load_scene(scene_argument);
   if (!data_dir.is_none())
     scene.directory = py::module_::import("os").attr("fspath")(data_dir).cast<std::string>();
@@ -79,15 +79,18 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
   packings::PackingModel model;
   granular::SceneRun run;
   nlohmann::ordered_json summary;
+  const std::unique_ptr<granular::ProgressMeter> meter = progress_meter(progress);
   {
     py::gil_scoped_release computing;
     model = packings::build_packing_model(scene, limits);
     granular::SceneRunOptions options;
     options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
     options.limits = limits;
+    options.progress = meter.get();
     run = packings::run_packing_scene(scene, model, options);
     summary = packings::packing_summary(scene, model, run);
   }
+  if (meter) meter->finish();
   // the scene needs the moving geometry: a warning, as from the command line
   if (run.configuration && !run.configuration->holds() &&
       PyErr_WarnEx(PyExc_UserWarning, run.configuration->describe().c_str(), 1) < 0)
@@ -151,12 +154,12 @@ void bind_packings(py::module_& module) {
       });
   module.def("run_packing", &run_packing, py::arg("scene"), py::kw_only(),
              py::arg("delta_p") = py::none(), py::arg("data_dir") = py::none(),
-             py::arg("max_memory") = granular::RunLimits{}.memory_gb,
+             py::arg("max_memory") = granular::RunLimits{}.memory_gb, py::arg("progress") = false,
              "Runs a planar packing scene (a path, or a dict with its keys) as `mimpact packing` "
              "does; delta_p (N s) overrides the scene's impulse step; bead lists are read only "
              "inside data_dir (by default the scene file's directory, or the working directory "
              "for a dict); a run that would hold more than max_memory GB is refused before it "
-             "starts.");
+             "starts; with progress=True a run longer than 2 s shows where it is on sys.stderr.");
 }
 
 }  // namespace mimpact::python

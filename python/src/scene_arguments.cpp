@@ -13,6 +13,19 @@ granular::RunLimits memory_limits(double max_memory) {
   return limits;
 }
 
+std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress) {
+  if (!progress) return nullptr;
+  return std::make_unique<granular::ProgressMeter>([](const std::string& text) {
+    py::gil_scoped_acquire python;
+    try {
+      const py::object stderr_stream = py::module_::import("sys").attr("stderr");
+      stderr_stream.attr("write")(text);
+      stderr_stream.attr("flush")();
+    } catch (const py::error_already_set&) {  // a progress line is not worth the run
+    }
+  });
+}
+
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns) {
   Eigen::MatrixXd matrix(Eigen::Index(rows.size()), Eigen::Index(columns));

@@ -3,11 +3,13 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "json_conversion.hpp"
 #include "mimpact/common/error.hpp"
+#include "mimpact/granular/progress_meter.hpp"
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/granular/time_series.hpp"
 
@@ -29,6 +31,10 @@ auto load_scene_argument(const pybind11::object& scene, Read&& read, Load&& load
 
 // The limits of a run from Python's max_memory= (GB), checked.
 granular::RunLimits memory_limits(double max_memory);
+
+// The progress line of progress=True, on sys.stderr in place (the GIL taken for each write, so
+// that the run may release it); null for False.
+std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress);
 
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns);

@@ -59,6 +59,6 @@ struct ConfigurationCheck {
 // `not_made` and the LZB run stands.
 ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOutcome& lzb,
                                        const ConfigurationCheckSpec& spec, double default_accuracy,
-                                       const RunLimits& limits);
+                                       const RunLimits& limits, ProgressMeter* progress = nullptr);
 
 }  // namespace mimpact::granular

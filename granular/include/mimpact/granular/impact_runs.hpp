@@ -7,6 +7,7 @@
 #include "mimpact/granular/contact_model.hpp"
 #include "mimpact/granular/impact_outcome.hpp"
 #include "mimpact/granular/moving_contacts_stats.hpp"
+#include "mimpact/granular/progress_meter.hpp"
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/granular/time_series.hpp"
@@ -42,15 +43,21 @@ struct CompliantRun {
   MovingContactsStats moving;  // the moving geometry's counts (zero in the frozen one)
 };
 
+// What a compliant run records and reports beside its outcome.
+struct CompliantRunOptions {
+  RecordSpec record;    // the contacts and bodies sampled, every record.interval
+  int frame_every = 0;  // every frame_every-th sample a frame of the whole scene (0: none)
+  RunLimits limits;     // the memory the samples and frames may take
+  ProgressMeter* progress = nullptr;
+};
+
 // The impact computed with the compliant contacts integrated in time (method "compliant"): the
 // same outcome fields (impulses, peaks and their times from the first contact; steps are the
-// integration's), the recorded time series, sampled every record.interval, and every
-// frame_every-th sample a frame of the whole scene (0: none), within the memory of `limits`
+// integration's), the recorded time series and frames, within the memory of options.limits
 // (InvalidInput before the run when the samples of the impact's shortest possible duration
 // would exceed it, and during it when they do).
 CompliantRun simulate_compliant(const ContactModel& model,
                                 std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
-                                const CompliantSpec& spec, const RecordSpec& record,
-                                int frame_every = 0, const RunLimits& limits = {});
+                                const CompliantSpec& spec, const CompliantRunOptions& options = {});
 
 }  // namespace mimpact::granular

@@ -10,6 +10,7 @@
 #include "mimpact/granular/moving_contact.hpp"
 #include "mimpact/granular/moving_contacts_options.hpp"
 #include "mimpact/granular/moving_contacts_stats.hpp"
+#include "mimpact/granular/progress_meter.hpp"
 
 namespace mimpact::granular {
 
@@ -48,6 +49,8 @@ class MovingContacts {
 
   // Advances to `target`, or until the motion ends (ended()); returns the time reached.
   double advance(double target);
+  // Told where the run is at each window (null: nothing).
+  void set_progress(ProgressMeter* progress) { progress_ = progress; }
   // No contact carries force and no two bodies within the lists' reach approach each other:
   // nothing will change but the flights.
   bool ended() const;
@@ -120,6 +123,7 @@ class MovingContacts {
   double contact_time_ = 0.0, mass_exponent_ = 0.0, contact_steps_ = 0.0;
   std::vector<std::int32_t> by_mass_;  // the bodies, lightest first
   double list_bound_ = 0.0;  // s: no body leaves its list's ball within a window this long
+  ProgressMeter* progress_ = nullptr;
 };
 
 }  // namespace mimpact::granular

@@ -8,6 +8,7 @@
 #include "mimpact/granular/configuration_check.hpp"
 #include "mimpact/granular/contact_model.hpp"
 #include "mimpact/granular/impact_runs.hpp"
+#include "mimpact/granular/progress_meter.hpp"
 #include "mimpact/granular/run_limits.hpp"
 #include "mimpact/granular/scene_spec.hpp"
 #include "mimpact/granular/time_series.hpp"
@@ -25,9 +26,8 @@ struct SceneRunOptions {
   ImpactOverrides impact;  // over the scene's "impact" (resolve_impact)
   bool record = true;      // sample the scene's "record"
   RunLimits limits;        // the memory the recording may take
-  // Sees the LZB samples too, at least every progress_every impulse steps (a progress report).
-  numerics::ImpactObserver* progress = nullptr;
-  std::int64_t progress_every = 2'000'000;
+  // Told where the run is, by each of its phases (the CLI's progress line).
+  ProgressMeter* progress = nullptr;
 };
 
 // What the scene asks of its run: its fields common to every geometry.

@@ -1,0 +1,59 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <string>
+
+// Where a long run is: one line updated in place, as LAMMPS's thermo output or tqdm show it.
+namespace mimpact::granular {
+
+// What a run's loop knows of itself when it reports.
+struct ProgressState {
+  double time = 0.0;  // s, simulated
+  std::int64_t steps = 0;
+  std::int64_t contacts = -1;  // contacts loaded or in motion; < 0: not known
+  double impulse = std::numeric_limits<double>::quiet_NaN();  // N s, LZB's principal impulse
+};
+
+// Throttled by the clock: a loop reports as often as it likes, and its sink gets the first line
+// after `delay` s and then one every `interval` s (one clock read when none is due), so that a
+// short run prints nothing. Each phase of a run (the LZB impact, its configuration check, the
+// compliant contacts) names itself and the simulated time it is to reach, when it knows it.
+class ProgressMeter {
+ public:
+  // Writes what it is given: a line kept in place ("\r", the line, spaces over the rest of the
+  // last one), and a newline when the run is done, if any line was shown.
+  using Sink = std::function<void(const std::string& text)>;
+  explicit ProgressMeter(Sink sink, double delay = 2.0, double interval = 0.5);
+  ProgressMeter(const ProgressMeter&) = delete;
+  ProgressMeter& operator=(const ProgressMeter&) = delete;
+  ~ProgressMeter();
+
+  void begin(std::string phase, double end_time = std::numeric_limits<double>::quiet_NaN());
+  void report(const ProgressState& state) {
+    if (std::chrono::steady_clock::now() >= next_) show(state);
+  }
+  // Closes the line, if one was shown.
+  void finish();
+
+  // The line for `state` after `elapsed` s of the current phase.
+  std::string line(const ProgressState& state, double elapsed) const;
+
+ private:
+  void show(const ProgressState& state);
+
+  Sink sink_;
+  std::chrono::steady_clock::duration interval_;
+  std::chrono::steady_clock::time_point start_, next_;
+  std::string phase_ = "run";
+  double end_time_ = std::numeric_limits<double>::quiet_NaN();
+  std::size_t width_ = 0;  // of the line shown, 0 if none
+};
+
+// A sink that writes to `stream` (a terminal) at once.
+ProgressMeter::Sink stream_sink(std::FILE* stream);
+
+}  // namespace mimpact::granular
