@@ -20,11 +20,6 @@ namespace {
 // tightest tolerances resolve (tests/packings/test_packing_reduction.cpp).
 constexpr double kOverlapResolution = 1e-12;
 
-// what a scene whose overlaps are round-off can do (check_overlap_resolved)
-constexpr const char* kFasterStrikers =
-    "allowed: faster strikers (strikers[].velocity: the overlaps grow with the speed), or the LZB "
-    "impact (\"method\": \"lzb\"), which needs no positions";
-
 // The impact's overlap, or the static one of a precompressed scene struck by nothing.
 double overlap_scale(const ContactModel& model) {
   const double overlap = impact_overlap(model);
@@ -336,7 +331,7 @@ std::unique_ptr<CompliantEngine> make_compliant_engine(
     largest_coordinate =
         std::max(largest_coordinate,
                  system->system(b).position().head(model.dimension).lpNorm<Eigen::Infinity>());
-  check_overlap_resolved(overlap_scale(model), largest_coordinate, kFasterStrikers);
+  check_overlap_resolved(overlap_scale(model), largest_coordinate, faster_strikers_advice(false));
   return std::make_unique<KernelEngine>(model, std::move(system), spec);
 }
 

@@ -24,6 +24,22 @@ std::string short_text(double value) {
   return text;
 }
 
+// Why the moving geometry cannot take the model's contacts, or nothing: a restitution below
+// kLeastPackingRestitution, or friction on inelastic contacts (MovingContacts).
+std::string what_the_moving_geometry_refuses(const ContactModel& model) {
+  for (const numerics::ContactLaw& law : model.laws) {
+    if (law.restitution < kLeastPackingRestitution)
+      return "the moving geometry takes restitution >= " + short_text(kLeastPackingRestitution) +
+             " in a packing, and it is " + short_text(law.restitution) +
+             " here (below it the beads' outcome as they move is ill-conditioned)";
+    if (law.friction > 0.0 && law.effective_restitution() < 1.0)
+      return "the moving geometry takes friction on elastic contacts only (restitution 1), and "
+             "the restitution is " +
+             short_text(law.restitution) + " here";
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string ConfigurationCheck::describe() const {
@@ -57,14 +73,8 @@ ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOu
   for (Eigen::Index b = 0; b < bodies; ++b)
     check.speed = std::max(check.speed, model.velocity.segment(b * d, d).norm());
 
-  for (const numerics::ContactLaw& law : model.laws)
-    if (law.restitution < kLeastPackingRestitution) {
-      check.not_made =
-          "the moving geometry takes restitution >= " + short_text(kLeastPackingRestitution) +
-          " in a packing, and it is " + short_text(law.restitution) +
-          " here (below it the beads' outcome as they move is ill-conditioned)";
-      return check;
-    }
+  check.not_made = what_the_moving_geometry_refuses(model);
+  if (!check.not_made.empty()) return check;
   CompliantSpec moving;
   moving.tolerance = check.tolerance;
   moving.end_time = check.time;

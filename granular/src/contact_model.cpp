@@ -60,6 +60,14 @@ void check_impact_scales(const ContactModel& model,
   }
 }
 
+std::string faster_strikers_advice(bool moving) {
+  return std::string(
+             "allowed: faster strikers (strikers[].velocity: the overlaps grow with the "
+             "speed), ") +
+         (moving ? "the frozen geometry (compliant.geometry \"frozen\") " : "") +
+         "or the LZB impact (\"method\": \"lzb\"), which needs no positions";
+}
+
 void check_overlap_resolved(double overlap, double largest_coordinate, const std::string& advice) {
   constexpr double kResolvedOverlap = 1e3;
   const double rounding = largest_coordinate * std::numeric_limits<double>::epsilon();

@@ -84,10 +84,7 @@ MovingContacts::MovingContacts(const BeadGeometry& geometry, std::vector<Eigen::
     largest_coordinate = std::max(largest_coordinate, x.cwiseAbs().maxCoeff());
   for (const Plane& wall : geometry.walls)
     largest_coordinate = std::max(largest_coordinate, wall.point.cwiseAbs().maxCoeff());
-  check_overlap_resolved(overlap, largest_coordinate,
-                         "allowed: faster strikers (strikers[].velocity: the overlaps grow with "
-                         "the speed), the frozen geometry (compliant.geometry \"frozen\") or the "
-                         "LZB impact (\"method\": \"lzb\")");
+  check_overlap_resolved(overlap, largest_coordinate, faster_strikers_advice(true));
   world_->first_step = 1e-3 * overlap / closing;
   world_->time_scale = overlap / closing;
   world_->mass_scale = geometry.mass.minCoeff();
@@ -163,14 +160,7 @@ double MovingContacts::advance(double target) {
       progress_->report({.time = time_,
                          .steps = world_->stats.steps,
                          .contacts = std::int64_t(world_->loaded_ids.size())});
-    // a window is a loop of the run too: with the groups' steps, within max_steps
-    if (world_->stats.steps + world_->stats.windows > world_->options.max_steps)
-      throw BudgetSpent(
-          "moving contacts: max_steps = " + std::to_string(world_->options.max_steps) +
-              " time steps and windows taken by t = " + to_text(time_) +
-              " s (compliant.max_steps in a scene): " + std::to_string(world_->stats.windows) +
-              " windows, " + std::to_string(world_->stats.steps) + " steps",
-          time_);
+    world_->check_budgets(time_);  // a window is a loop of the run too
   }
   return time_;
 }

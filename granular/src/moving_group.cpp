@@ -397,19 +397,8 @@ void MovingGroup::take_step() {
     last_step_ = dense_->last_step();
   }
   world_.stats.member_steps += std::int64_t(members_.size());
-  if (world_.stats.member_steps > world_.options.max_body_steps)
-    throw BudgetSpent("moving contacts: " + std::to_string(world_.stats.member_steps) +
-                          " body steps taken by t = " + to_text(stepper_time()) +
-                          " s, beyond the budget of " +
-                          std::to_string(world_.options.max_body_steps),
-                      stepper_time());
-  if (++world_.stats.steps + world_.stats.windows > world_.options.max_steps)
-    throw BudgetSpent(
-        "moving contacts: max_steps = " + std::to_string(world_.options.max_steps) +
-            " time steps and windows taken by t = " + to_text(stepper_time()) +
-            " s (compliant.max_steps in a scene); the contacts' time scale is below what the "
-            "tolerance and double precision resolve",
-        stepper_time());
+  ++world_.stats.steps;
+  world_.check_budgets(stepper_time());
   const auto& now = stepper_state();
   if (!std::all_of(now.begin(), now.end(), [](double x) { return std::isfinite(x); }))
     throw Error("moving contacts: the state is not finite at t = " + to_text(stepper_time()) +

@@ -1,6 +1,9 @@
 #include "moving_world.hpp"
 
+#include <string>
 #include <utility>
+
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::granular {
 
@@ -31,6 +34,20 @@ std::int32_t MovingWorld::contact_id(std::int32_t first, std::int32_t second) {
   contacts.push_back(c);
   contacts_of[std::size_t(first)].emplace_back(second, id);
   return id;
+}
+
+void MovingWorld::check_budgets(double t) const {
+  if (stats.member_steps > options.max_body_steps)
+    throw BudgetSpent("moving contacts: " + std::to_string(stats.member_steps) +
+                          " body steps taken by t = " + to_text(t) + " s, beyond the budget of " +
+                          std::to_string(options.max_body_steps),
+                      t);
+  if (stats.steps + stats.windows > options.max_steps)
+    throw BudgetSpent("moving contacts: max_steps = " + std::to_string(options.max_steps) +
+                          " time steps and windows taken by t = " + to_text(t) +
+                          " s (compliant.max_steps in a scene): " + std::to_string(stats.steps) +
+                          " steps, " + std::to_string(stats.windows) + " windows",
+                      t);
 }
 
 }  // namespace mimpact::granular

@@ -51,6 +51,9 @@ struct MovingWorld {
   std::int32_t contact_id(std::int32_t first, std::int32_t second);
   // the same, or -1 if there is none
   std::int32_t find_contact_id(std::int32_t first, std::int32_t second) const;
+  // Throws BudgetSpent at time t (s) when the steps and windows taken exceed options.max_steps,
+  // or the body steps options.max_body_steps: every loop of a run counts against its budget.
+  void check_budgets(double t) const;
 
   const BeadGeometry& geometry;
   MovingContactsOptions options;

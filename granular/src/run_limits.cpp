@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "mimpact/common/error.hpp"
@@ -10,9 +11,12 @@ namespace mimpact::granular {
 
 namespace {
 
-// "1.2 GB", "850 MB"
-std::string size_text(double bytes) {
-  return bytes >= 1e9 ? rounded_text(bytes / 1e9) + " GB" : rounded_text(bytes / 1e6) + " MB";
+// "1.2 GB", "850 MB", to `digits` significant digits
+std::string size_text(double bytes, int digits) {
+  const bool giga = bytes >= 1e9;
+  char number[40];
+  std::snprintf(number, sizeof number, "%.*g", digits, bytes / (giga ? 1e9 : 1e6));
+  return std::string(number) + (giga ? " GB" : " MB");
 }
 
 }  // namespace
@@ -28,9 +32,12 @@ double model_bytes(double bodies, double contacts, int dimension) {
 
 void check_memory(double bytes, const std::string& what, const RunLimits& limits) {
   if (!(bytes > limits.memory_bytes())) return;
-  throw InvalidInput(what + " needs about " + size_text(bytes) + " of memory; allowed: at most " +
-                     size_text(limits.memory_bytes()) + " (raise the limit with " +
-                     limits.memory_option + ", in GB)");
+  int digits = 3;  // as many as tell the need from the limit
+  while (digits < 17 && size_text(bytes, digits) == size_text(limits.memory_bytes(), digits))
+    ++digits;
+  throw InvalidInput(what + " needs about " + size_text(bytes, digits) +
+                     " of memory; allowed: at most " + size_text(limits.memory_bytes(), digits) +
+                     " (raise the limit with " + limits.memory_option + ", in GB)");
 }
 
 double impact_duration_bound(const ContactModel& model) {

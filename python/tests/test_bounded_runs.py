@@ -105,6 +105,17 @@ def test_item4_max_memory_is_checked_at_every_listed_bead(cli, tmp_path):
     assert done.returncode == 1 and "--max-memory" in done.stderr
 
 
+def test_item4_the_memory_message_tells_the_need_from_the_limit(cli, tmp_path):
+    # the need and the limit to as many digits as tell them apart ("1 GB ... at most 1 GB" before)
+    scene = {"material": STEEL,
+             "lattice": {"type": "hexagonal", "rows": 24, "columns": 24, "radius": 0.005},
+             "strikers": [{"target": [0, 12], "radius": 0.005, "velocity": [0.0, 1.0]}]}
+    with pytest.raises(ValueError, match=r"needs about 4\.608 MB .* at most 4\.605 MB"):
+        mimpact.run_packing(scene, max_memory=0.004605)
+    done, _ = run_cli(cli, "packing", scene, tmp_path, "--max-memory", "0.004605")
+    assert done.returncode != 0 and "4.608 MB" in done.stderr and "4.605 MB" in done.stderr
+
+
 def test_item5_the_default_configuration_check_is_bounded_and_says_why(cli, tmp_path):
     # a check at 1e-10 after an LZB run at 1e-4: more than 3 times the LZB run's work
     scene = {"material": STEEL,

@@ -98,6 +98,23 @@ TEST(ConfigurationCheck, NotMadeWhereTheMovingGeometryCannotRun) {
   EXPECT_TRUE(near.run.configuration->not_made.empty());
 }
 
+// Contacts the moving geometry does not take leave the check not made, with the reason (not an
+// input error: the LZB run takes them): a restitution below 0.2 in a packing, friction on
+// inelastic contacts.
+TEST(ConfigurationCheck, NotMadeForContactsTheMovingGeometryDoesNotTake) {
+  for (const char* contact : {R"("contact": {"restitution": 0.1})",
+                              R"("contact": {"restitution": 0.5, "friction": 0.3})"}) {
+    const PackingCase lzb =
+        run_packing(lattice_scene("hexagonal", 4, 4, "[0, 2]", "[0.3, 1.0]",
+                                  std::string(contact) + R"(, "impact": {"integrator": "adaptive",
+                                                                       "tolerance": 1e-6})"));
+    const std::string& why = lzb.run.configuration->not_made;
+    EXPECT_NE(why.find("the moving geometry takes"), std::string::npos) << why;
+    EXPECT_EQ(why.find("invalid"), std::string::npos) << why;
+    EXPECT_GT(lzb.run.impact.velocity_after.norm(), 0.0);
+  }
+}
+
 // The check is the scene's to skip, and only LZB runs of beads make it.
 TEST(ConfigurationCheck, SkippedWhenDisabledOrCompliant) {
   EXPECT_FALSE(lzb_hexagon("[0.0, 1.0]", R"(, "configuration_check": {"enabled": false})")

@@ -90,6 +90,9 @@ void check_impact_scales(const ContactModel& model,
 // coordinates, and a contact pressed less than their rounding runs on round-off (a chain struck
 // at 1e-20 m/s stored 1e-33 J at rest). `advice` ends the message: what the scene can change.
 void check_overlap_resolved(double overlap, double largest_coordinate, const std::string& advice);
+// check_overlap_resolved's advice to a scene: faster strikers, or the LZB impact; from the
+// moving geometry (`moving`), the frozen one too.
+std::string faster_strikers_advice(bool moving);
 
 // Throws InvalidInput naming `field` (a striker's gap, m) unless it is at most kFarthestGap
 // times `reach`, the sum of the striker's and its target's radii (m): farther, the rounding of
