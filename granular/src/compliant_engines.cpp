@@ -77,12 +77,14 @@ MovingContactsOptions moving_options(const ContactModel& model, const CompliantS
 }
 
 // Hertz's law holds for overlaps small beside the radii: an approaching contact whose lone
-// overlap (lone_overlap) exceeds half the smaller radius of its bodies is refused, its beads
-// would pass through each other (a striker at 1e8 m/s ran past 10 s).
+// overlap (lone_overlap), with its bodies' spin energy I w^2 / 2 added to its approach (friction
+// may turn the one into the other), exceeds half the smaller radius of its bodies is refused, its
+// beads would pass through each other (a striker at 1e8 m/s, or spinning at 9e18 rad/s, ran
+// past 10 s).
 void check_overlaps_within_radii(const ContactModel& model) {
   for (Eigen::Index j = 0; j < model.contact_count(); ++j) {
     if (!(model.u_minus(j) < 0.0)) continue;
-    double radius = INFINITY;
+    double radius = INFINITY, spin_energy = 0.0;
     std::string bodies;
     Eigen::Index last = -1;
     for (Eigen::SparseMatrix<double>::InnerIterator it(model.W, j); it; ++it) {
@@ -91,15 +93,26 @@ void check_overlaps_within_radii(const ContactModel& model) {
       last = body;
       radius = std::min(radius, model.beads->radius(body));
       bodies += (bodies.empty() ? "body " : " and body ") + std::to_string(body);
+      if (model.rotation)
+        spin_energy += 0.5 * model.rotation->inertia(body) *
+                       model.rotation->of(model.rotation->angular_velocity, body).squaredNorm();
     }
-    const double overlap = lone_overlap(model, j);
+    const numerics::ContactLaw& law = model.laws[std::size_t(j)];
+    const double approach = 0.5 * model.u_minus(j) * model.u_minus(j) / model.H.coeff(j, j);
+    const double overlap =
+        spin_energy > 0.0
+            ? std::pow((1.0 + law.exponent) * (approach + spin_energy) / law.stiffness,
+                       1.0 / (1.0 + law.exponent))
+            : lone_overlap(model, j);
     if (overlap > 0.5 * radius)
       throw InvalidInput(
-          "the strikers' speeds press " + bodies + " about " + to_text(overlap) +
+          "the strikers' speeds" + std::string(spin_energy > 0.0 ? " and spins" : "") + " press " +
+          bodies + " about " + to_text(overlap) +
           " m into each other, more than half their smaller radius (" + to_text(radius) +
           " m): Hertz's law holds for overlaps small beside the radii; allowed: slower strikers "
-          "(strikers[].velocity), or the LZB impact (\"method\": \"lzb\"), whose configuration "
-          "is frozen");
+          "(strikers[].velocity" +
+          std::string(spin_energy > 0.0 ? ", strikers[].spin" : "") +
+          "), or the LZB impact (\"method\": \"lzb\"), whose configuration is frozen");
   }
 }
 

@@ -212,6 +212,23 @@ def test_item6_a_light_body_far_from_all_does_not_shorten_the_windows(cli, tmp_p
     assert done.returncode == 0 and summary["moving_geometry"] == run["moving_geometry"]
 
 
+def test_item6_a_spin_beyond_hertz_is_refused(cli, tmp_path):
+    # fuzz_python.py seed 1 case 1897: a striker spinning at 9.2e18 rad/s spent compliant.max_steps
+    # in 30 s; its spin's energy, which friction may turn into the approach, is bounded as a
+    # speed's is
+    scene = {"material": STEEL,
+             "lattice": {"type": "hexagonal", "rows": 3, "columns": 4, "radius": 0.005},
+             "strikers": [{"target": [0, 2], "radius": 0.005, "velocity": [0.3, 1.0],
+                           "offset": 0.002, "spin": 9223372036854775808}],
+             "contact": {"friction": 0.3}, "method": "compliant"}
+    with pytest.raises(ValueError, match=r"speeds and spins press .*strikers\[\]\.spin"):
+        mimpact.run_packing(scene)
+    done, _ = run_cli(cli, "packing", scene, tmp_path)
+    assert done.returncode != 0 and "strikers[].spin" in done.stderr
+    scene["strikers"][0]["spin"] = 1e5  # a surface speed of 500 m/s runs
+    assert mimpact.run_packing(scene).summary["status"] == "terminated"
+
+
 def test_item7_rattling_stops_at_its_event_budget(cli, tmp_path):
     beads = "x,y,radius\n" + "".join(f"{2e-12 * i!r},0,1e-12\n" for i in range(6))
     (tmp_path / "beads.csv").write_text(beads)
