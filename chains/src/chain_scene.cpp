@@ -86,6 +86,8 @@ ChainScene read_chain_scene(json document, const std::string& source,
   check_record(scene, checks);
   check_precompression(scene, checks);
   scene.compliant.check_tolerance(false, checks);  // a chain's gaps are linear: frozen
+  if (scene.method == granular::Method::compliant)
+    granular::check_compliant_restitution(scene.contact, checks);
   return scene;
 }
 

@@ -25,11 +25,11 @@ std::string short_text(double value) {
 }
 
 // Why the moving geometry cannot take the model's contacts, or nothing: a restitution below
-// kLeastPackingRestitution, or friction on inelastic contacts (MovingContacts).
+// kLeastCompliantRestitution, or friction on inelastic contacts (MovingContacts).
 std::string what_the_moving_geometry_refuses(const ContactModel& model) {
   for (const numerics::ContactLaw& law : model.laws) {
-    if (law.restitution < kLeastPackingRestitution)
-      return "the moving geometry takes restitution >= " + short_text(kLeastPackingRestitution) +
+    if (law.restitution < kLeastCompliantRestitution)
+      return "the moving geometry takes restitution >= " + short_text(kLeastCompliantRestitution) +
              " in a packing, and it is " + short_text(law.restitution) +
              " here (below it the beads' outcome as they move is ill-conditioned)";
     if (law.friction > 0.0 && law.effective_restitution() < 1.0)

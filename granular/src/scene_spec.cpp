@@ -23,14 +23,13 @@ void CompliantSpec::check_tolerance(bool moving, const SceneChecks& checks) cons
               "moving geometry)");
 }
 
-void check_packing_restitution(const ContactSpec& contact, const SceneChecks& checks) {
-  if (contact.restitution >= kLeastPackingRestitution) return;
+void check_compliant_restitution(const ContactSpec& contact, const SceneChecks& checks) {
+  if (contact.restitution >= kLeastCompliantRestitution) return;
   checks.fail("contact.restitution = " + to_text(contact.restitution) +
-              " with \"method\": \"compliant\" in a packing; allowed: restitution >= " +
-              to_text(kLeastPackingRestitution) +
-              " (below it a packing's compliant outcome is ill-conditioned in the scene's data, "
-              "and near 0 touching beads collide again and again; the LZB method takes any "
-              "restitution)");
+              " with \"method\": \"compliant\"; allowed: restitution >= " +
+              to_text(kLeastCompliantRestitution) +
+              " (below it the compliant outcome does not converge with the tolerance, and near 0 "
+              "touching beads collide again and again; the LZB method takes any restitution)");
 }
 
 void lend_material(nlohmann::json& document, std::initializer_list<const char*> bodies,

@@ -75,7 +75,7 @@ void check_packing(const PackingScene& scene, const SceneChecks& checks) {
         "gaps in the frozen geometry only (the moving geometry's gaps are the beads' own)");
   scene.compliant.check_tolerance(scene.compliant.geometry == granular::Geometry::moving, checks);
   if (scene.method == granular::Method::compliant)
-    granular::check_packing_restitution(scene.contact, checks);
+    granular::check_compliant_restitution(scene.contact, checks);
 }
 
 // the names of the scene's materials, each once

@@ -143,19 +143,35 @@ def small_restitution(restitution, method):
             "method": method, "impact": {"integrator": "adaptive", "tolerance": 1e-8}}
 
 
-def test_small_restitution_is_refused_in_packings_compliant_contacts(cli, tmp_path):
-    # below 0.2 a packing's compliant outcome is ill-conditioned in its data
-    # (PackingConvergence.SmallRestitutionBound measures it); LZB takes any e
-    for restitution in (0.0, 1e-6, 0.1, 0.19):
-        scene = small_restitution(restitution, "compliant")
-        with pytest.raises(ValueError, match=r"contact.restitution = .* allowed: restitution >= 0.2"):
-            mimpact.run_packing(scene)
-        where = tmp_path / str(restitution)
-        where.mkdir()
-        done, _ = run_cli(cli, "packing", scene, where)
-        assert done.returncode != 0 and "contact.restitution" in done.stderr
-        assert not (where / "out").exists()
-    assert mimpact.run_packing(small_restitution(0.2, "compliant")).summary["status"] == "terminated"
+def pressed_chain(restitution, method):
+    scene = {"material": STEEL, "chain": {"segments": [{"count": 10, "radius": 0.004}]},
+             "wall": {}, "strikers": [{"side": "left", "radius": 0.004, "velocity": 0.5}],
+             "contact": {"model": "bi-stiffness", "restitution": restitution}, "method": method}
+    if method == "compliant":
+        scene.update(precompression=5.0, compliant={"tolerance": 1e-8, "end_time": 2e-4})
+    else:
+        scene["impact"] = {"integrator": "adaptive", "tolerance": 1e-8}
+    return scene
+
+
+def test_small_restitution_is_refused_in_compliant_contacts(cli, tmp_path):
+    # below 0.2 a packing's compliant outcome is ill-conditioned in its data, and a pressed
+    # chain's does not converge with the tolerance (PackingConvergence.SmallRestitutionBound,
+    # Convergence.CompliantChainsSmallRestitutionBound measure them); LZB takes any e
+    for command, scene_of, run in (("packing", small_restitution, mimpact.run_packing),
+                                   ("chain", pressed_chain, mimpact.run_chain)):
+        for restitution in (0.0, 1e-170, 1e-6, 0.1, 0.19):
+            scene = scene_of(restitution, "compliant")
+            with pytest.raises(ValueError,
+                               match=r"contact.restitution = .* allowed: restitution >= 0.2"):
+                run(scene)
+            where = tmp_path / f"{command}-{restitution}"
+            where.mkdir()
+            done, _ = run_cli(cli, command, scene, where)
+            assert done.returncode != 0 and "contact.restitution" in done.stderr
+            assert not (where / "out").exists()
+        assert run(scene_of(0.2, "compliant")).summary["status"] == "terminated"
+    assert mimpact.run_chain(pressed_chain(0.0, "lzb")).summary["status"] == "terminated"
     # the LZB run's check in the moving geometry is not made, and says why, at once
     with pytest.warns(UserWarning, match="could not be made"):
         check = mimpact.run_packing(small_restitution(1e-6, "lzb")).summary["configuration_check"]

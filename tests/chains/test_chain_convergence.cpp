@@ -5,12 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "../support/chain_runs.hpp"
 #include "../support/hertz_chain_reference.hpp"
 #include "../support/published.hpp"
+#include "mimpact/chains/chain_run.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
+#include "mimpact/granular/scene_spec.hpp"
 
 namespace mimpact::testing {
 namespace {
@@ -187,6 +190,56 @@ TEST(Convergence, LzbConvergesToTheCompliantReferenceAtFirstOrder) {
     EXPECT_GE(slope, 0.8) << scene_name;
     EXPECT_LE(slope, 1.2) << scene_name;
   }
+}
+
+// The precompressed 10-bead chain against a wall, struck at 0.5 m/s (fuzz_python.py seed 5353
+// case 284), its compliant contacts until 1 ms at `restitution`, set past the scene's check,
+// which refuses e below granular::kLeastCompliantRestitution.
+struct PressedChain {
+  Eigen::VectorXd velocity;  // m/s, after 1 ms
+  std::int64_t steps = 0;
+};
+PressedChain pressed_chain(double restitution, double tolerance) {
+  char text[640];
+  std::snprintf(text, sizeof text, R"({
+    "material": {"density": 7650, "young": 226e9, "poisson": 0.3},
+    "chain": {"segments": [{"count": 10, "radius": 0.004}]}, "wall": {},
+    "strikers": [{"side": "left", "radius": 0.004, "velocity": 0.5}],
+    "contact": {"model": "bi-stiffness", "restitution": 0.5}, "precompression": 5.0,
+    "method": "compliant", "compliant": {"tolerance": %g, "end_time": 1e-3}})",
+                tolerance);
+  chains::ChainScene scene = chains::parse_chain_scene(text, "pressed chain");
+  scene.contact.restitution = restitution;
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  const granular::SceneRun run = chains::run_chain_scene(scene, model);
+  return {run.impact.velocity_after, run.impact.result.steps};
+}
+
+// docs/limits.md, "Small restitution": at the bound e = 0.2 the chain's compliant runs converge
+// with the tolerance; at e = 0.05 they do not (their contacts, pressed, unload and reload on a
+// branch 1/e^2 stiffer than the loading one, at a cost growing as 1/e).
+TEST(Convergence, CompliantChainsSmallRestitutionBound) {
+  const double speed = 0.5;
+  auto rms = [&](const PressedChain& a, const PressedChain& b) {
+    return std::sqrt((a.velocity - b.velocity).squaredNorm() / double(a.velocity.size())) / speed;
+  };
+  const double least = granular::kLeastCompliantRestitution;
+  const PressedChain bound = pressed_chain(least, 1e-12);
+  const double at_1e9 = rms(pressed_chain(least, 1e-9), bound);
+  const double at_1e10 = rms(pressed_chain(least, 1e-10), bound);
+  std::printf("e = 0.2: RMS from 1e-12 %.3g at 1e-9, %.3g at 1e-10 of V\n", at_1e9, at_1e10);
+  EXPECT_LE(at_1e9, 5e-6);   // measured 1.5e-6
+  EXPECT_LE(at_1e10, 1e-6);  // measured 4.3e-7
+  const PressedChain below = pressed_chain(0.05, 1e-12);
+  for (double tolerance : {1e-9, 1e-10, 1e-11}) {
+    const double apart = rms(pressed_chain(0.05, tolerance), below);
+    std::printf("e = 0.05: RMS from 1e-12 %.3g at %g of V\n", apart, tolerance);
+    EXPECT_GE(apart, 1e-3) << tolerance;  // measured 2.0e-3, 2.6e-3, 1.7e-3
+  }
+  const double cost = double(below.steps) / double(bound.steps);
+  std::printf("steps at 1e-12: %lld at e = 0.05, %lld at e = 0.2\n", (long long)below.steps,
+              (long long)bound.steps);
+  EXPECT_GE(cost, 3.0);  // 1/e: 4; measured 3.6
 }
 
 }  // namespace

@@ -238,7 +238,7 @@ TEST(PackingConvergence, TheFrozenConfigurationsGapsAndNormalsScaleAsHertzSays) 
 
 // The 16 x 16 hexagonal packing's compliant contacts (moving geometry) until 0.5 ms, struck at
 // `speed` (m/s), with `restitution` set past the scene's check, which refuses e below
-// granular::kLeastPackingRestitution.
+// granular::kLeastCompliantRestitution.
 PackingCase compliant_hexagon(double restitution, double tolerance, double speed = 1.0) {
   char velocity[64], how[192];
   std::snprintf(velocity, sizeof velocity, "[0.0, %.17g]", speed);

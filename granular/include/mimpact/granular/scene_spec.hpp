@@ -173,13 +173,13 @@ struct ContactSpec {
   }
 };
 
-// The least restitution of a packing's compliant contacts: below it their outcome is
-// ill-conditioned in the scene's data, and as e -> 0 touching beads collide again and again; the
-// LZB method takes any e (docs/limits.md, "Small restitution").
-inline constexpr double kLeastPackingRestitution = 0.2;
-// Refuses a packing's compliant contacts below kLeastPackingRestitution, naming
-// contact.restitution.
-void check_packing_restitution(const ContactSpec& contact, const SceneChecks& checks);
+// The least restitution of a scene's compliant contacts, in chains and packings: below it their
+// outcome does not converge with the tolerance (in packings it is ill-conditioned in the scene's
+// data), and as e -> 0 touching beads collide again and again, at a cost growing as 1/e under a
+// load; the LZB method takes any e (docs/limits.md, "Small restitution").
+inline constexpr double kLeastCompliantRestitution = 0.2;
+// Refuses compliant contacts below kLeastCompliantRestitution, naming contact.restitution.
+void check_compliant_restitution(const ContactSpec& contact, const SceneChecks& checks);
 
 // A scene file's JSON: parse_json_document's limits, and its messages naming the file, line,
 // column and field.
