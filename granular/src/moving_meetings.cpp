@@ -31,6 +31,16 @@ double meeting_time(const Eigen::Vector3d& between, const Eigen::Vector3d& relat
   return t <= horizon ? t : INFINITY;
 }
 
+// The time in [0, horizon] at which a body at x flying at v comes within `reach` of a wall's
+// plane, or infinity.
+double wall_meeting_time(const Plane& wall, const Eigen::Vector3d& x, const Eigen::Vector3d& v,
+                         double reach, double horizon) {
+  const double closing = -wall.normal.dot(v);
+  if (closing <= 0.0) return INFINITY;
+  const double t = std::max(0.0, (wall.normal.dot(x - wall.point) - reach) / closing);
+  return t <= horizon ? t : INFINITY;
+}
+
 }  // namespace
 
 // With nothing loaded: the earliest meeting of two bodies flying freely, or of a body and a wall,
@@ -50,14 +60,14 @@ double MovingContacts::next_meeting(double target) const {
   while (!std::isfinite(met) && time_ + horizon < target) {
     const double longer = std::min(target - time_, kFlightHorizonGrowth * horizon);
     met = flight_meeting(longer, fastest);
-    if (std::isnan(met)) break;  // too many candidates: go as far as the last horizon cleared
+    if (std::isnan(met)) return time_ + horizon;  // too many candidates: the horizon cleared
     horizon = longer;
   }
   return time_ + std::min(met, horizon);
 }
 
-// The earliest meeting within `horizon` (s, from time_) of bodies in each other's lists, or
-// infinity.
+// The earliest meeting within `horizon` (s, from time_) of bodies in each other's lists, or of
+// a body and a wall in its list, or infinity.
 double MovingContacts::listed_meeting(double horizon) const {
   const double resolution = world_->options.overlap_resolution;
   double earliest = INFINITY;
@@ -71,6 +81,10 @@ double MovingContacts::listed_meeting(double horizon) const {
                        world_->geometry.radius(i) + world_->geometry.radius(k) - resolution,
                        horizon));
     }
+    for (std::int32_t w : world_->lists.walls_near(i))
+      earliest = std::min(
+          earliest, wall_meeting_time(world_->geometry.walls[std::size_t(w)], a.position_at(time_),
+                                      a.v, world_->geometry.radius(i) - resolution, horizon));
   }
   return earliest;
 }
@@ -98,12 +112,8 @@ double MovingContacts::flight_meeting(double horizon, double fastest) const {
           std::min(earliest, meeting_time(b.position_at(time_) - x, b.v - a.v,
                                           radius + geometry.radius(k) - resolution, horizon));
     });
-    for (const Plane& wall : geometry.walls) {
-      const double towards = -wall.normal.dot(a.v);
-      const double gap = wall.normal.dot(x - wall.point) - radius + resolution;
-      if (towards > 0.0 && gap <= towards * horizon)
-        earliest = std::min(earliest, std::max(0.0, gap / towards));
-    }
+    for (const Plane& wall : geometry.walls)
+      earliest = std::min(earliest, wall_meeting_time(wall, x, a.v, radius - resolution, horizon));
     if (budget < 0.0) return NAN;
   }
   return earliest;
@@ -157,12 +167,9 @@ std::vector<MovingContacts::Meeting> MovingContacts::free_meetings(double end) c
       if (std::isfinite(t)) meetings.push_back({time_ + t, i, k});
     }
     for (std::int32_t w : world_->lists.walls_near(i)) {
-      const Plane& wall = world_->geometry.walls[std::size_t(w)];
-      const double closing = -wall.normal.dot(a.v);
-      if (closing <= 0.0) continue;
-      const double gap = wall.normal.dot(x - wall.point) - world_->geometry.radius(i) + resolution;
-      const double t = std::max(0.0, gap / closing);
-      if (t <= horizon) meetings.push_back({time_ + t, i, -1 - w});
+      const double t = wall_meeting_time(world_->geometry.walls[std::size_t(w)], x, a.v,
+                                         world_->geometry.radius(i) - resolution, horizon);
+      if (std::isfinite(t)) meetings.push_back({time_ + t, i, -1 - w});
     }
   }
   std::sort(meetings.begin(), meetings.end(),
