@@ -6,20 +6,23 @@ namespace mimpact::chains {
 
 granular::SceneRun run_chain_scene(const ChainScene& scene, const ChainModel& model,
                                    const granular::SceneRunOptions& options) {
-  return granular::run_scene(model, build_chain_system(model),
-                             {.impact = scene.impact,
-                              .method = scene.method,
-                              .compliant = scene.compliant,
-                              .record = scene.record,
-                              .frame_every = 0,
-                              .source = scene.source},
-                             options);
+  return granular::run_scene(
+      model, [&] { return build_chain_system(model); },
+      {.impact = scene.impact,
+       .method = scene.method,
+       .compliant = scene.compliant,
+       .record = scene.record,
+       .frame_every = 0,
+       .source = scene.source},
+      options);
 }
 
 nlohmann::ordered_json run_summary(const ChainModel& model, const granular::SceneRun& run) {
   nlohmann::ordered_json summary =
       chain_summary(model, run.impact, run.delta_p, run.recorded ? &run.series : nullptr);
   summary["method"] = std::string(enum_name(run.method));
+  if (run.error_estimate)
+    summary["error_estimate"] = granular::error_estimate_json(run.error_estimate);
   if (run.method != granular::Method::lzb) return summary;
   summary["integrator"] = std::string(enum_name(run.options.chosen_integrator()));
   if (run.options.relative_delta_p) summary["relative_delta_p"] = *run.options.relative_delta_p;

@@ -1,9 +1,11 @@
 #include "mimpact/granular/scene_run.hpp"
 
+#include <chrono>
 #include <limits>
 #include <utility>
 #include <vector>
 
+#include "mimpact/granular/error_estimate.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
 
 namespace mimpact::granular {
@@ -83,27 +85,26 @@ SceneRun run_lzb(const ContactModel& model,
   return run;
 }
 
-}  // namespace
-
-SceneRun run_scene(const ContactModel& model,
-                   std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
-                   const SceneRunSpec& spec, const SceneRunOptions& options) {
-  const bool record = options.record && (!spec.record.contacts.empty() ||
-                                         !spec.record.bodies.empty() || spec.frame_every > 0);
-  const plugins::LzbImpactOptions impact =
-      resolve_impact(spec.impact, spec.method, options.impact, spec.source);
-  if (spec.method == Method::lzb) {
-    SceneRun run = run_lzb(model, std::move(system), spec, options, impact, record);
-    const ConfigurationCheckSpec* check = spec.configuration_check;
-    if (check && check->enabled && model.beads) {
-      const double accuracy = impact.chosen_integrator() == plugins::LzbIntegrator::adaptive
-                                  ? impact.adaptive_tolerance()
-                                  : kImpulseStepAccuracy;
-      run.configuration = check_configuration(model, run.impact, *check, accuracy, options.limits,
-                                              options.progress);
-    }
-    return run;
+// The LZB run, and its configuration against the moving geometry when the spec asks for it.
+SceneRun run_lzb_checked(const ContactModel& model,
+                         std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                         const SceneRunSpec& spec, const SceneRunOptions& options,
+                         const plugins::LzbImpactOptions& impact, bool record) {
+  SceneRun run = run_lzb(model, std::move(system), spec, options, impact, record);
+  const ConfigurationCheckSpec* check = spec.configuration_check;
+  if (check && check->enabled && model.beads) {
+    const double accuracy = impact.chosen_integrator() == plugins::LzbIntegrator::adaptive
+                                ? impact.adaptive_tolerance()
+                                : kImpulseStepAccuracy;
+    run.configuration =
+        check_configuration(model, run.impact, *check, accuracy, options.limits, options.progress);
   }
+  return run;
+}
+
+SceneRun run_compliant(const ContactModel& model,
+                       std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+                       const SceneRunSpec& spec, const SceneRunOptions& options, bool record) {
   if (options.progress)
     options.progress->begin("compliant contacts", spec.compliant.end_time.value_or(
                                                       std::numeric_limits<double>::quiet_NaN()));
@@ -119,6 +120,31 @@ SceneRun run_scene(const ContactModel& model,
   run.frames = std::move(compliant.frames);
   run.moving = compliant.moving;
   run.recorded = record;
+  return run;
+}
+
+}  // namespace
+
+SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
+                   const SceneRunSpec& spec, const SceneRunOptions& options) {
+  const bool record = options.record && (!spec.record.contacts.empty() ||
+                                         !spec.record.bodies.empty() || spec.frame_every > 0);
+  const plugins::LzbImpactOptions impact =
+      resolve_impact(spec.impact, spec.method, options.impact, spec.source);
+  SceneRun run = spec.method == Method::lzb
+                     ? run_lzb_checked(model, build_system(), spec, options, impact, record)
+                     : run_compliant(model, build_system(), spec, options, record);
+  if (options.estimate_error) {
+    const Companion companion = companion_of(model, spec.method, impact, spec.compliant);
+    const auto clock = std::chrono::steady_clock::now();
+    const Eigen::VectorXd velocity =
+        spec.method == Method::lzb
+            ? simulate_impacts(model, build_system(), companion.impact).velocity_after
+            : simulate_compliant(model, build_system(), companion.compliant).impact.velocity_after;
+    run.error_estimate = estimate_error(model, run.impact.velocity_after, velocity, companion);
+    run.error_estimate->companion_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  }
   return run;
 }
 

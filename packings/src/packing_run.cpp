@@ -186,15 +186,16 @@ granular::TimeSeries frame_table(const granular::Frames& frames, bool forces, in
 granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingModel& model,
                                      const granular::SceneRunOptions& options) {
   check_record(scene, model);
-  return granular::run_scene(model, build_packing_system(model),
-                             {.impact = scene.impact,
-                              .method = scene.method,
-                              .compliant = scene.compliant,
-                              .record = scene.run_record(),
-                              .frame_every = scene.record.frames,
-                              .source = scene.source,
-                              .configuration_check = &scene.configuration_check},
-                             options);
+  return granular::run_scene(
+      model, [&] { return build_packing_system(model); },
+      {.impact = scene.impact,
+       .method = scene.method,
+       .compliant = scene.compliant,
+       .record = scene.run_record(),
+       .frame_every = scene.record.frames,
+       .source = scene.source,
+       .configuration_check = &scene.configuration_check},
+      options);
 }
 
 nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
@@ -262,6 +263,8 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"configuration_check", configuration_json(run.configuration)},
       {"moving_geometry", moving_json(run.moving)},
       {"contacts", contacts}};
+  if (run.error_estimate)
+    summary["error_estimate"] = granular::error_estimate_json(run.error_estimate);
   return summary;
 }
 

@@ -1,12 +1,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "mimpact/granular/configuration_check.hpp"
 #include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/error_estimate.hpp"
 #include "mimpact/granular/impact_runs.hpp"
 #include "mimpact/granular/progress_meter.hpp"
 #include "mimpact/granular/run_limits.hpp"
@@ -28,6 +30,9 @@ struct SceneRunOptions {
   RunLimits limits;        // the memory the recording may take
   // Told where the run is, by each of its phases (the CLI's progress line).
   ProgressMeter* progress = nullptr;
+  // A companion run of the scene at another step estimates the run's error (SceneRun's
+  // error_estimate; docs/design/error_estimates.md).
+  bool estimate_error = false;
 };
 
 // What the scene asks of its run: its fields common to every geometry.
@@ -53,16 +58,20 @@ struct SceneRun {
   // the LZB run's frozen configuration against the beads as they move, when it was checked
   std::optional<ConfigurationCheck> configuration;
   MovingContactsStats moving;  // the work of a run in the moving geometry (zero otherwise)
+  std::optional<ErrorEstimate> error_estimate;  // when SceneRunOptions::estimate_error
 };
+
+// A new kernel system of the model (body b is the model's body b), as the scene starts: a run
+// takes one, its companion another.
+using SystemFactory = std::function<std::shared_ptr<kernel::NonSmoothDynamicalSystem>()>;
 
 // The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
 // event-driven scheme, or the compliant contacts integrated in time, as the scene says, on
-// `system` (body b is the model's body b). An LZB run of beads is then checked against the
+// a system from `build_system`. An LZB run of beads is then checked against the
 // moving geometry as spec.configuration_check says. Throws InvalidInput for a missing or
 // out-of-range delta_p, a delta_p given to another method or alongside relative_delta_p, and a
 // recording beyond options.limits.
-SceneRun run_scene(const ContactModel& model,
-                   std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
+SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
                    const SceneRunSpec& spec, const SceneRunOptions& options = {});
 
 }  // namespace mimpact::granular

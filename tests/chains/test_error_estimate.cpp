@@ -1,0 +1,105 @@
+// A run's estimate of its own error (granular/error_estimate.hpp, docs/design/error_estimates.md):
+// on C1 by each method, against the true error (the run at a step 1 000 times finer), the
+// estimate bounds it and is within ten times it. Issue 48 asks this of 95 % and 90 % of a corpus
+// of 40 scenes, not of every run: C1's compliant contacts at e = 0.5 and tolerance 1e-7, left
+// out here, are estimated at 0.34 of their true error (the design page's table).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "mimpact/chains/chain_model.hpp"
+#include "mimpact/chains/chain_run.hpp"
+#include "mimpact/chains/chain_scene.hpp"
+
+namespace mimpact::testing {
+namespace {
+
+// C1 (examples/scenes/c1.json) at restitution e, run as `how` says.
+chains::ChainScene c1(double restitution, const std::string& how) {
+  char text[512];
+  std::snprintf(text, sizeof text, R"({
+    "material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+    "chain": {"segments": [{"count": 20, "radius": 0.010}]},
+    "strikers": [{"side": "left", "radius": 0.010, "velocity": 1.0}],
+    "contact": {"model": "bi-stiffness", "exponent": 1.5, "restitution": %g}, %s})",
+                restitution, how.c_str());
+  return chains::parse_chain_scene(text, "C1");
+}
+
+struct Estimated {
+  double estimate = 0.0, truth = 0.0;  // RMS over the beads, of the striker's 1 m/s
+};
+
+// The scene's run with its estimate, and the true RMS error against `reference`.
+Estimated estimated(const chains::ChainScene& scene, const chains::ChainScene& reference) {
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  const granular::SceneRun run = chains::run_chain_scene(scene, model, {.estimate_error = true});
+  const granular::SceneRun exact = chains::run_chain_scene(reference, model);
+  const Eigen::VectorXd error = run.impact.velocity_after - exact.impact.velocity_after;
+  EXPECT_TRUE(run.error_estimate.has_value());
+  EXPECT_EQ(chains::run_summary(model, run)["error_estimate"]["rms"].get<double>(),
+            run.error_estimate->rms);
+  const Estimated result{run.error_estimate->rms,
+                         std::sqrt(error.squaredNorm() / double(error.size()))};
+  std::printf("%-60s estimate %.3g, true %.3g (x %.3g); %s\n", scene.source.c_str(),
+              result.estimate, result.truth, result.estimate / result.truth,
+              run.error_estimate->method.c_str());
+  return result;
+}
+
+std::string label(const char* what, double value, double tolerance = 0.0) {
+  char text[96];
+  std::snprintf(text, sizeof text, tolerance > 0.0 ? "%s %g, tolerance %g" : "%s %g", what, value,
+                tolerance);
+  return text;
+}
+
+void expect_honest(const Estimated& estimated, const std::string& what) {
+  EXPECT_GE(estimated.estimate, estimated.truth) << what;
+  EXPECT_LE(estimated.estimate, 10.0 * estimated.truth) << what;
+}
+
+std::string impact(const char* field, double value, const char* integrator = "") {
+  char text[160];
+  std::snprintf(text, sizeof text, R"("impact": {%s"%s": %g})", integrator, field, value);
+  return text;
+}
+
+TEST(ErrorEstimate, ImpulseStepsByRichardsonOverDeltaP) {
+  for (double delta_p : {1e-4, 1e-5}) {
+    chains::ChainScene scene = c1(1.0, impact("delta_p", delta_p));
+    scene.source = label("impulse steps, delta_p", delta_p);
+    expect_honest(estimated(scene, c1(1.0, impact("delta_p", delta_p / 1000))), scene.source);
+  }
+}
+
+TEST(ErrorEstimate, AdaptiveLzbByACompanionAtTenTimesTheTolerance) {
+  for (double e : {1.0, 0.9, 0.5})
+    for (double tolerance : {1e-4, 1e-6, 1e-8}) {
+      const char* adaptive = R"("integrator": "adaptive", )";
+      chains::ChainScene scene = c1(e, impact("tolerance", tolerance, adaptive));
+      scene.source = label("adaptive, e", e, tolerance);
+      expect_honest(estimated(scene, c1(e, impact("tolerance", tolerance / 1000, adaptive))),
+                    scene.source);
+    }
+}
+
+TEST(ErrorEstimate, CompliantContactsByACompanionAtTenTimesTheTolerance) {
+  auto compliant = [](double tolerance) {
+    char text[96];
+    std::snprintf(text, sizeof text, R"("method": "compliant", "compliant": {"tolerance": %g})",
+                  tolerance);
+    return std::string(text);
+  };
+  for (double e : {1.0, 0.9})
+    for (double tolerance : {1e-5, 1e-7}) {
+      chains::ChainScene scene = c1(e, compliant(tolerance));
+      scene.source = label("compliant, e", e, tolerance);
+      expect_honest(estimated(scene, c1(e, compliant(tolerance / 1000))), scene.source);
+    }
+}
+
+}  // namespace
+}  // namespace mimpact::testing
