@@ -37,8 +37,9 @@ Companion companion_of(const ContactModel& model, Method method,
   std::string what;
   if (method == Method::compliant) {
     const bool frozen = compliant.geometry == Geometry::frozen || !model.beads;
-    ratio = companion_ratio(compliant.tolerance, 10.0,
-                            frozen ? CompliantSpec::kLoosestFrozenTolerance : 1e-1);
+    ratio = companion_ratio(
+        compliant.tolerance, 10.0,
+        frozen ? CompliantSpec::kLoosestFrozenTolerance : CompliantSpec::kLoosestTolerance);
     companion.compliant.tolerance = compliant.tolerance * ratio;
     safety = kToleranceSafety;
     what = "tolerance";

@@ -101,11 +101,14 @@ struct CompliantSpec {
   // geometry resolves overlaps down to (1e-2 tolerance)^(1 / eta) of the impact's and takes up
   // to 1e-1 (docs/design/moving_geometry.md, "One tolerance").
   static constexpr double kLoosestFrozenTolerance = 1e-4;
+  // The loosest tolerance of all (the moving geometry's).
+  static constexpr double kLoosestTolerance = 1e-1;
 
   template <class Self, class Visit>
   static void visit_fields(Self& self, Visit&& field) {
     // below 1e-14 the error estimates drown in round-off: the run never ends
-    field("tolerance", self.tolerance, within(1e-14, 1e-1).described("1e-14 <= tolerance <= 1e-1"));
+    field("tolerance", self.tolerance,
+          within(1e-14, kLoosestTolerance).described("1e-14 <= tolerance <= 1e-1"));
     field("end_time", self.end_time, positive("s"));
     field("gaps", self.gaps);
     field("geometry", self.geometry);
