@@ -32,16 +32,6 @@ void warn_if_coarse(double delta_p, double striker_momentum, bool quiet) {
       delta_p, share, striker_momentum, 100.0 * share);
 }
 
-// What the report's second line says of the method.
-std::string method_line(const chains::ChainScene& scene, std::optional<double> delta_p) {
-  if (scene.adaptive())
-    return "adaptive LZB, tolerance " + to_text(scene.impact.adaptive_tolerance());
-  if (delta_p) return "LZB impulse steps, delta_p = " + to_text(*delta_p) + " N s";
-  if (scene.impact.relative_delta_p)
-    return "LZB impulse steps, relative_delta_p = " + to_text(*scene.impact.relative_delta_p);
-  return "compliant contacts integrated in time";
-}
-
 // summary.json on stdout, or with the time series into `out`, complete or not at all.
 void write_results(const nlohmann::ordered_json& summary, const granular::TimeSeries* series,
                    const std::filesystem::path& out) {
@@ -130,6 +120,7 @@ int chain_command(const std::vector<std::string>& arguments) {
       "max-memory", po::value(&limits.memory_gb),
       "GB the run may hold (the chain and its recorded series), 4 by default; a run that needs "
       "more is refused before it starts")("quiet", "no progress or report on stderr");
+  add_accuracy_options(visible);
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
@@ -141,7 +132,14 @@ int chain_command(const std::vector<std::string>& arguments) {
   const chains::ChainModel model = chains::build_chain_model(scene, limits);
   granular::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
   if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
-  scene.impact = granular::resolve_impact(scene.impact, scene.method, overrides, scene_file);
+  granular::SceneRunOptions run_options;
+  read_accuracy_options(values, overrides, run_options);
+  scene.accuracy = granular::resolve_accuracy(scene.accuracy, overrides);
+  if (scene.accuracy && !tolerance.empty())
+    throw InvalidInput("--tolerance beside accuracy = " + to_text(*scene.accuracy) +
+                       ": the accuracy chooses the step; allowed: one of them");
+  scene.impact =
+      granular::resolve_impact(scene.impact, scene.method, overrides, scene_file, scene.accuracy);
   const bool lzb = scene.method == granular::Method::lzb;
   const Studies studies = meet_tolerance(scene, model,
                                          {.tolerance = tolerance,
@@ -153,12 +151,11 @@ int chain_command(const std::vector<std::string>& arguments) {
     std::cerr << "mimpact chain: \"record\" needs --out DIR to write its time series; ignored\n";
   const bool writes_series = recording && !out.empty();
 
-  if (lzb && !scene.adaptive()) {  // refused before it is warned of
+  if (lzb && !scene.adaptive() && !scene.accuracy) {  // refused before it is warned of
     const double delta_p =
         granular::impulse_step(model, scene.impact, granular::impact_labels(overrides));
     warn_if_coarse(delta_p, granular::smallest_momentum(model), quiet);
   }
-  granular::SceneRunOptions run_options;
   run_options.record = writes_series;
   run_options.limits = limits;
   const std::unique_ptr<granular::ProgressMeter> progress = progress_line(quiet);
@@ -173,7 +170,8 @@ int chain_command(const std::vector<std::string>& arguments) {
 
   if (!quiet)
     std::cerr << scene_file << ": "
-              << chains::chain_report(model, impact, method_line(scene, run.delta_p));
+              << chains::chain_report(model, impact, granular::describe_method(run))
+              << granular::describe_error(run);
   if (impact.result.status != numerics::ImpactStatus::terminated)
     throw Error(scene_file + ": " + impact.result.message + "; no output written");
   if (!(impact.velocity_after.allFinite() && impact.result.max_force.allFinite() &&

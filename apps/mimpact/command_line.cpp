@@ -33,4 +33,23 @@ std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet) {
   return std::make_unique<granular::ProgressMeter>(granular::stream_sink(stderr));
 }
 
+void add_accuracy_options(boost::program_options::options_description& visible) {
+  visible.add_options()(
+      "accuracy", boost::program_options::value<double>(),
+      "the error asked of the post-impact velocities, a share of the fastest speed before the "
+      "impact (1e-12 to 0.1): the run chooses its tolerance (or delta_p) and runs again until its "
+      "estimate meets it; overrides the scene's accuracy, delta_p and tolerance")(
+      "no-error-estimate",
+      "skip the companion run that estimates the answer's error (it costs 0.3 to 1 x the run; "
+      "a run asked for an accuracy makes it all the same)");
+}
+
+void read_accuracy_options(const boost::program_options::variables_map& values,
+                           granular::ImpactOverrides& overrides,
+                           granular::SceneRunOptions& run_options) {
+  overrides.accuracy_name = "--accuracy";
+  if (values.count("accuracy")) overrides.accuracy = values["accuracy"].as<double>();
+  run_options.estimate_error = values.count("no-error-estimate") == 0;
+}
+
 }  // namespace mimpact::cli

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mimpact/granular/progress_meter.hpp"
+#include "mimpact/granular/scene_run.hpp"
 
 namespace mimpact::cli {
 
@@ -20,5 +21,13 @@ bool parse_command_line(const std::vector<std::string>& arguments,
 // The progress line of a long run on stderr, in place: null with --quiet or when stderr is not
 // a terminal.
 std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet);
+
+// --accuracy and --no-error-estimate, of the chain and packing commands.
+void add_accuracy_options(boost::program_options::options_description& visible);
+// Their values: the accuracy over the scene's (and its step rule), and the error estimate, on
+// unless --no-error-estimate.
+void read_accuracy_options(const boost::program_options::variables_map& values,
+                           granular::ImpactOverrides& overrides,
+                           granular::SceneRunOptions& run_options);
 
 }  // namespace mimpact::cli

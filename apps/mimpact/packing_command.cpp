@@ -55,6 +55,7 @@ int packing_command(const std::vector<std::string>& arguments) {
       "max-memory", po::value(&limits.memory_gb),
       "GB the run may hold (the packing, its series and frames), 4 by default; a run that needs "
       "more is refused before it starts")("quiet", "no report on stderr");
+  add_accuracy_options(visible);
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
@@ -67,11 +68,12 @@ int packing_command(const std::vector<std::string>& arguments) {
   const packings::PackingModel model = packings::build_packing_model(scene, limits);
   granular::ImpactOverrides overrides{.delta_p_name = "--delta-p"};
   if (values.count("delta-p")) overrides.delta_p = values["delta-p"].as<double>();
+  granular::SceneRunOptions run_options;
+  read_accuracy_options(values, overrides, run_options);
   const bool recording =
       !scene.record.contacts.empty() || !scene.record.beads.empty() || scene.record.frames > 0;
   if (recording && out.empty() && !quiet)
     std::cerr << "mimpact packing: \"record\" needs --out DIR to write its series; ignored\n";
-  granular::SceneRunOptions run_options;
   run_options.impact = overrides;
   run_options.record = recording && !out.empty();
   run_options.limits = limits;
@@ -80,7 +82,7 @@ int packing_command(const std::vector<std::string>& arguments) {
   const granular::SceneRun run = packings::run_packing_scene(scene, model, run_options);
   if (progress) progress->finish();
   const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
-  if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(scene, model, run);
+  if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(model, run);
   if (run.configuration && !run.configuration->holds())  // even when quiet: the model is wrong
     std::cerr << scene_file << ": warning: " << run.configuration->describe() << "\n";
   if (run.impact.result.status != numerics::ImpactStatus::terminated)

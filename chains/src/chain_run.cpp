@@ -13,7 +13,8 @@ granular::SceneRun run_chain_scene(const ChainScene& scene, const ChainModel& mo
        .compliant = scene.compliant,
        .record = scene.record,
        .frame_every = 0,
-       .source = scene.source},
+       .source = scene.source,
+       .accuracy = scene.accuracy},
       options);
 }
 
@@ -23,7 +24,11 @@ nlohmann::ordered_json run_summary(const ChainModel& model, const granular::Scen
   summary["method"] = std::string(enum_name(run.method));
   if (run.error_estimate)
     summary["error_estimate"] = granular::error_estimate_json(run.error_estimate);
-  if (run.method != granular::Method::lzb) return summary;
+  if (run.accuracy) summary["accuracy"] = granular::accuracy_json(*run.accuracy);
+  if (run.method != granular::Method::lzb) {
+    summary["tolerance"] = run.compliant.tolerance;
+    return summary;
+  }
   summary["integrator"] = std::string(enum_name(run.options.chosen_integrator()));
   if (run.options.relative_delta_p) summary["relative_delta_p"] = *run.options.relative_delta_p;
   if (run.options.chosen_integrator() == plugins::LzbIntegrator::adaptive)

@@ -82,6 +82,7 @@ ChainScene read_chain_scene(json document, const std::string& source,
       {.name = source, .unknown = "key", .top = "the top level", .locations = locations});
   scene.source = source;
   check_bodies(scene, checks);
+  granular::check_accuracy_alone(document, checks);
   scene.impact = granular::resolve_impact(scene.impact, scene.method, {}, source);
   check_record(scene, checks);
   check_precompression(scene, checks);

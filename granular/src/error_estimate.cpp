@@ -13,13 +13,17 @@ namespace {
 // The measured ratios of a companion's difference to the true error, at r = 2 for delta_p and
 // r = 10 for a tolerance (docs/design/error_estimates.md): 0.93 to 1.00 of (r - 1) for delta_p,
 // 0.11 to 7 of (r - 1) for a tolerance; these factors make the estimate bound the true error.
-constexpr double kDeltaPSafety = 2.0;
+constexpr double kDeltaPSafety = 1.25;
 constexpr double kToleranceSafety = 3.0;
 
-// `step` times `ratio` where that stays at most `largest`, else divided by it; the ratio taken.
-double companion_ratio(double step, double ratio, double largest) {
-  return step * ratio <= largest ? ratio : 1.0 / ratio;
-}
+// A first impulse step this many times the accuracy's share of the momentum: the impulse steps'
+// error is 1 to 13 times delta_p / (m V) on the chains of docs/performance.md, so that the first
+// pair is about ten times coarser than the answer and costs a tenth of it.
+constexpr double kFirstDeltaP = 10.0;
+// A refinement aims at this share of the accuracy: first order in delta_p predicts its step
+// closely; a tolerance's error is proportional within a factor of about 3.
+constexpr double kDeltaPAim = 0.8;
+constexpr double kToleranceAim = 0.5;
 
 std::string said(const std::string& what, double ratio, double scale) {
   char text[160];
@@ -30,40 +34,110 @@ std::string said(const std::string& what, double ratio, double scale) {
 
 }  // namespace
 
-Companion companion_of(const ContactModel& model, Method method,
-                       const plugins::LzbImpactOptions& impact, const CompliantSpec& compliant) {
-  Companion companion{.impact = impact, .compliant = compliant};
-  double ratio = 1.0, safety = 1.0;
-  std::string what;
-  if (method == Method::compliant) {
-    const bool frozen = compliant.geometry == Geometry::frozen || !model.beads;
-    ratio = companion_ratio(
-        compliant.tolerance, 10.0,
-        frozen ? CompliantSpec::kLoosestFrozenTolerance : CompliantSpec::kLoosestTolerance);
-    companion.compliant.tolerance = compliant.tolerance * ratio;
-    safety = kToleranceSafety;
-    what = "tolerance";
-  } else if (impact.chosen_integrator() == plugins::LzbIntegrator::adaptive) {
-    ratio = companion_ratio(impact.adaptive_tolerance(), 10.0,
-                            numerics::LzbAdaptiveOptions::kToleranceRange.upper);
-    companion.impact.tolerance = impact.adaptive_tolerance() * ratio;
-    safety = kToleranceSafety;
-    what = "tolerance";
-  } else {
-    if (impact.delta_p) {
-      ratio = companion_ratio(*impact.delta_p, 2.0, 0.5 * smallest_momentum(model));
-      companion.impact.delta_p = *impact.delta_p * ratio;
-    } else {
-      ratio = companion_ratio(*impact.relative_delta_p, 2.0, 0.5);
-      companion.impact.relative_delta_p = *impact.relative_delta_p * ratio;
-    }
-    if (ratio < 1.0) companion.impact.impulse_steps.max_steps *= 2;
-    safety = kDeltaPSafety;
-    what = "delta_p";
+StepOptions StepRule::at(const StepOptions& options, double k) const {
+  StepOptions changed = options;
+  switch (kind) {
+    case Kind::delta_p:
+      changed.impact.delta_p = k;
+      break;
+    case Kind::relative_delta_p:
+      changed.impact.relative_delta_p = k;
+      break;
+    case Kind::lzb_tolerance:
+      changed.impact.tolerance = k;
+      break;
+    case Kind::compliant_tolerance:
+      changed.compliant.tolerance = k;
+      break;
   }
-  companion.scale = safety / std::abs(ratio - 1.0);
-  companion.method = said(what, ratio, companion.scale);
-  return companion;
+  return changed;
+}
+
+StepRule step_rule(const ContactModel& model, Method method, const StepOptions& options) {
+  StepRule rule;
+  if (method == Method::compliant) {
+    const bool frozen = options.compliant.geometry == Geometry::frozen || !model.beads;
+    rule = {.kind = StepRule::Kind::compliant_tolerance,
+            .value = options.compliant.tolerance,
+            .finest = 1e-14,
+            .loosest =
+                frozen ? CompliantSpec::kLoosestFrozenTolerance : CompliantSpec::kLoosestTolerance,
+            .safety = kToleranceSafety,
+            .companion = 10.0,
+            .name = "tolerance"};
+  } else if (options.impact.chosen_integrator() == plugins::LzbIntegrator::adaptive) {
+    rule = {.kind = StepRule::Kind::lzb_tolerance,
+            .value = options.impact.adaptive_tolerance(),
+            .finest = numerics::LzbAdaptiveOptions::kToleranceRange.lower,
+            .loosest = numerics::LzbAdaptiveOptions::kToleranceRange.upper,
+            .safety = kToleranceSafety,
+            .companion = 10.0,
+            .name = "tolerance"};
+  } else if (options.impact.delta_p) {
+    rule = {.kind = StepRule::Kind::delta_p,
+            .value = *options.impact.delta_p,
+            .finest = largest_momentum(model) / double(options.impact.impulse_steps.max_steps),
+            .loosest = 0.5 * smallest_momentum(model),
+            .safety = kDeltaPSafety,
+            .companion = 2.0,
+            .name = "delta_p"};
+  } else {
+    rule = {.kind = StepRule::Kind::relative_delta_p,
+            .value = options.impact.relative_delta_p.value_or(0.0),
+            .finest = 0.0,
+            .loosest = 0.5,
+            .safety = kDeltaPSafety,
+            .companion = 2.0,
+            .name = "delta_p"};
+  }
+  return rule;
+}
+
+Companion companion_at(const StepRule& rule, const StepOptions& options, double value) {
+  const double ratio = value / rule.value;
+  const double scale = rule.safety / std::abs(ratio - 1.0);
+  return {
+      .options = rule.at(options, value), .scale = scale, .method = said(rule.name, ratio, scale)};
+}
+
+Companion companion_of(const StepRule& rule, const StepOptions& options) {
+  const double coarser = rule.value * rule.companion;
+  if (coarser <= rule.loosest) return companion_at(rule, options, coarser);
+  Companion finer = companion_at(rule, options, rule.value / rule.companion);
+  // a finer impulse step takes more steps: as many more are allowed
+  std::int64_t& max_steps = finer.options.impact.impulse_steps.max_steps;
+  max_steps = std::int64_t(std::ceil(double(max_steps) * rule.companion));
+  return finer;
+}
+
+StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
+                       double accuracy) {
+  StepOptions first = options;
+  first.impact.delta_p.reset();
+  first.impact.relative_delta_p.reset();
+  if (method == Method::compliant)
+    first.compliant.tolerance = accuracy;
+  else if (options.impact.chosen_integrator() == plugins::LzbIntegrator::adaptive)
+    first.impact.tolerance = accuracy;
+  else
+    first.impact.delta_p = kFirstDeltaP * accuracy * smallest_momentum(model);
+  const StepRule rule = step_rule(model, method, first);
+  return rule.at(first, std::clamp(rule.value, rule.finest, rule.loosest));
+}
+
+double next_step(const StepRule& rule, double estimate, double accuracy) {
+  const bool tolerance = rule.kind == StepRule::Kind::lzb_tolerance ||
+                         rule.kind == StepRule::Kind::compliant_tolerance;
+  const double aimed =
+      rule.value * (accuracy / estimate) * (tolerance ? kToleranceAim : kDeltaPAim);
+  return std::max(rule.finest, std::min(aimed, rule.value / rule.companion));
+}
+
+nlohmann::ordered_json accuracy_json(const AccuracyRun& accuracy) {
+  return {{"asked", accuracy.asked},
+          {"met", accuracy.met},
+          {"runs", accuracy.runs},
+          {accuracy.step, accuracy.value}};
 }
 
 ErrorEstimate estimate_error(const ContactModel& model, const Eigen::VectorXd& velocity,

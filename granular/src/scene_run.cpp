@@ -1,6 +1,7 @@
 #include "mimpact/granular/scene_run.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -85,30 +86,24 @@ SceneRun run_lzb(const ContactModel& model,
   return run;
 }
 
-// The LZB run, and its configuration against the moving geometry when the spec asks for it.
-SceneRun run_lzb_checked(const ContactModel& model,
-                         std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
-                         const SceneRunSpec& spec, const SceneRunOptions& options,
-                         const plugins::LzbImpactOptions& impact, bool record) {
-  SceneRun run = run_lzb(model, std::move(system), spec, options, impact, record);
+// The LZB run's frozen configuration against the moving geometry, when the spec asks for it;
+// `accuracy` is the one its figure is compared with.
+void check_frozen_configuration(SceneRun& run, const ContactModel& model, const SceneRunSpec& spec,
+                                const SceneRunOptions& options, double accuracy) {
   const ConfigurationCheckSpec* check = spec.configuration_check;
-  if (check && check->enabled && model.beads) {
-    const double accuracy = impact.chosen_integrator() == plugins::LzbIntegrator::adaptive
-                                ? impact.adaptive_tolerance()
-                                : kImpulseStepAccuracy;
-    run.configuration =
-        check_configuration(model, run.impact, *check, accuracy, options.limits, options.progress);
-  }
-  return run;
+  if (run.method != Method::lzb || !check || !check->enabled || !model.beads) return;
+  run.configuration =
+      check_configuration(model, run.impact, *check, accuracy, options.limits, options.progress);
 }
 
 SceneRun run_compliant(const ContactModel& model,
                        std::shared_ptr<kernel::NonSmoothDynamicalSystem> system,
-                       const SceneRunSpec& spec, const SceneRunOptions& options, bool record) {
+                       const SceneRunSpec& spec, const SceneRunOptions& options,
+                       const CompliantSpec& compliant_spec, bool record) {
   if (options.progress)
-    options.progress->begin("compliant contacts", spec.compliant.end_time.value_or(
+    options.progress->begin("compliant contacts", compliant_spec.end_time.value_or(
                                                       std::numeric_limits<double>::quiet_NaN()));
-  CompliantRun compliant = simulate_compliant(model, std::move(system), spec.compliant,
+  CompliantRun compliant = simulate_compliant(model, std::move(system), compliant_spec,
                                               {.record = record ? spec.record : RecordSpec{},
                                                .frame_every = record ? spec.frame_every : 0,
                                                .limits = options.limits,
@@ -123,29 +118,134 @@ SceneRun run_compliant(const ContactModel& model,
   return run;
 }
 
+// What every run of a scene shares: the model, its systems, the spec and the caller's options.
+struct SceneRuns {
+  const ContactModel& model;
+  const SystemFactory& build_system;
+  const SceneRunSpec& spec;
+  const SceneRunOptions& options;
+  bool record = false;  // the answer's run samples the scene's record
+
+  // The scene's run at the step options `step`, by its method.
+  SceneRun at(const StepOptions& step) const {
+    SceneRun run =
+        spec.method == Method::lzb
+            ? run_lzb(model, build_system(), spec, options, step.impact, record)
+            : run_compliant(model, build_system(), spec, options, step.compliant, record);
+    run.compliant = step.compliant;
+    return run;
+  }
+
+  // The velocities after the impact of an unrecorded run at `step` (a companion), and its
+  // computation's time (s, as ImpactOutcome::wall_time) added to `seconds`.
+  Eigen::VectorXd velocity_at(const StepOptions& step, double& seconds) const {
+    ImpactOutcome outcome = spec.method == Method::lzb
+                                ? simulate_impacts(model, build_system(), step.impact)
+                                : simulate_compliant(model, build_system(), step.compliant).impact;
+    seconds += outcome.wall_time;
+    return std::move(outcome.velocity_after);
+  }
+
+  // The run at `step`, with its companion's estimate of its error.
+  SceneRun estimated(const StepOptions& step) const {
+    SceneRun run = at(step);
+    const Companion companion = companion_of(step_rule(model, spec.method, step), step);
+    double seconds = 0.0;
+    const Eigen::VectorXd velocity = velocity_at(companion.options, seconds);
+    run.error_estimate = estimate_error(model, run.impact.velocity_after, velocity, companion);
+    run.error_estimate->companion_seconds = seconds;
+    return run;
+  }
+
+  SceneRun to_accuracy(StepOptions step, double accuracy) const;
+};
+
+// Runs of the scene at finer and finer steps until one's estimate meets `accuracy`, each the
+// companion of the next (docs/design/error_estimates.md, "Accuracy"): the answer is the last.
+constexpr int kMostRuns = 6;
+
+SceneRun SceneRuns::to_accuracy(StepOptions step, double accuracy) const {
+  step = first_step(model, spec.method, step, accuracy);
+  StepRule rule = step_rule(model, spec.method, step);
+  SceneRun run = estimated(step);
+  ErrorEstimate estimate = *run.error_estimate;
+  int runs = 2;
+  while (estimate.worst > accuracy && std::isfinite(estimate.worst) && rule.value > rule.finest &&
+         runs < kMostRuns) {
+    StepRule finer = rule;
+    finer.value = next_step(rule, estimate.worst, accuracy);
+    step = finer.at(step, finer.value);
+    const double seconds = estimate.companion_seconds + run.impact.wall_time;
+    const Eigen::VectorXd previous = std::move(run.impact.velocity_after);
+    run = {};  // its recording is not held beside the next run's
+    run = at(step);
+    estimate = estimate_error(model, run.impact.velocity_after, previous,
+                              companion_at(finer, step, rule.value));
+    estimate.companion_seconds = seconds;
+    rule = finer;
+    ++runs;
+  }
+  run.error_estimate = estimate;
+  run.accuracy = AccuracyRun{.asked = accuracy,
+                             .met = estimate.worst <= accuracy,
+                             .runs = runs,
+                             .step = rule.name,
+                             .value = rule.value};
+  return run;
+}
+
 }  // namespace
 
 SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
                    const SceneRunSpec& spec, const SceneRunOptions& options) {
-  const bool record = options.record && (!spec.record.contacts.empty() ||
-                                         !spec.record.bodies.empty() || spec.frame_every > 0);
-  const plugins::LzbImpactOptions impact =
-      resolve_impact(spec.impact, spec.method, options.impact, spec.source);
-  SceneRun run = spec.method == Method::lzb
-                     ? run_lzb_checked(model, build_system(), spec, options, impact, record)
-                     : run_compliant(model, build_system(), spec, options, record);
-  if (options.estimate_error) {
-    const Companion companion = companion_of(model, spec.method, impact, spec.compliant);
-    const auto clock = std::chrono::steady_clock::now();
-    const Eigen::VectorXd velocity =
-        spec.method == Method::lzb
-            ? simulate_impacts(model, build_system(), companion.impact).velocity_after
-            : simulate_compliant(model, build_system(), companion.compliant).impact.velocity_after;
-    run.error_estimate = estimate_error(model, run.impact.velocity_after, velocity, companion);
-    run.error_estimate->companion_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
-  }
+  const SceneRuns runs{
+      .model = model,
+      .build_system = build_system,
+      .spec = spec,
+      .options = options,
+      .record = options.record && (!spec.record.contacts.empty() || !spec.record.bodies.empty() ||
+                                   spec.frame_every > 0)};
+  const std::optional<double> accuracy = resolve_accuracy(spec.accuracy, options.impact);
+  const StepOptions step{
+      .impact = resolve_impact(spec.impact, spec.method, options.impact, spec.source, accuracy),
+      .compliant = spec.compliant};
+  SceneRun run = accuracy                 ? runs.to_accuracy(step, *accuracy)
+                 : options.estimate_error ? runs.estimated(step)
+                                          : runs.at(step);
+  const bool adaptive = run.options.chosen_integrator() == plugins::LzbIntegrator::adaptive;
+  check_frozen_configuration(run, model, spec, options,
+                             accuracy   ? *accuracy
+                             : adaptive ? run.options.adaptive_tolerance()
+                                        : kImpulseStepAccuracy);
   return run;
+}
+
+std::string describe_method(const SceneRun& run) {
+  if (run.method == Method::compliant)
+    return "compliant contacts integrated in time, tolerance " + to_text(run.compliant.tolerance);
+  if (run.options.chosen_integrator() == plugins::LzbIntegrator::adaptive)
+    return "adaptive LZB, tolerance " + to_text(run.options.adaptive_tolerance());
+  if (run.delta_p) return "LZB impulse steps, delta_p = " + to_text(*run.delta_p) + " N s";
+  return "LZB impulse steps, relative_delta_p = " +
+         to_text(run.options.relative_delta_p.value_or(0.0));
+}
+
+std::string describe_error(const SceneRun& run) {
+  if (!run.error_estimate) return "";
+  const ErrorEstimate& estimate = *run.error_estimate;
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "error estimate: worst body %.2g, RMS %.2g of the fastest speed before the impact "
+                "(%s; %.3g s)\n",
+                estimate.worst, estimate.rms, estimate.method.c_str(), estimate.companion_seconds);
+  std::string line = text;
+  if (run.accuracy) {
+    std::snprintf(text, sizeof text, "accuracy %.3g %s in %d runs, %s %.3g\n", run.accuracy->asked,
+                  run.accuracy->met ? "met" : "NOT met (the step's range ends)", run.accuracy->runs,
+                  run.accuracy->step.c_str(), run.accuracy->value);
+    line += text;
+  }
+  return line;
 }
 
 }  // namespace mimpact::granular

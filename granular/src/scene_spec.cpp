@@ -92,11 +92,45 @@ fields::Labels impact_labels(const ImpactOverrides& overrides) {
   return labels;
 }
 
+void check_accuracy_alone(const nlohmann::json& document, const SceneChecks& checks) {
+  if (!document.is_object() || !document.contains("accuracy")) return;
+  for (const char* pointer : {"/impact/delta_p", "/impact/relative_delta_p", "/impact/tolerance",
+                              "/compliant/tolerance"}) {
+    const json::json_pointer field(pointer);
+    if (!document.contains(field)) continue;
+    std::string name = pointer + 1;
+    std::replace(name.begin(), name.end(), '/', '.');
+    checks.fail(name + " = " + document.at(field).dump() +
+                " beside accuracy = " + document.at("accuracy").dump() +
+                ": the accuracy chooses the step; allowed: one of them");
+  }
+}
+
+std::optional<double> resolve_accuracy(std::optional<double> scene_accuracy,
+                                       const ImpactOverrides& overrides) {
+  if (overrides.delta_p && overrides.accuracy)
+    throw InvalidInput(overrides.delta_p_name + " = " + to_text(*overrides.delta_p) + " beside " +
+                       overrides.accuracy_name + " = " + to_text(*overrides.accuracy) +
+                       ": the accuracy chooses delta_p; allowed: one of them");
+  if (overrides.accuracy) {
+    fields::Validator("", "").check(overrides.accuracy_name, *overrides.accuracy, kAccuracyRange);
+    return overrides.accuracy;
+  }
+  return overrides.delta_p ? std::nullopt : scene_accuracy;
+}
+
 plugins::LzbImpactOptions resolve_impact(const plugins::LzbImpactOptions& impact, Method method,
                                          const ImpactOverrides& overrides,
-                                         const std::string& source) {
+                                         const std::string& source,
+                                         std::optional<double> accuracy) {
   plugins::LzbImpactOptions resolved = impact;
   if (overrides.delta_p) resolved.delta_p = overrides.delta_p;
+  if (accuracy) {
+    resolved.delta_p.reset();
+    resolved.relative_delta_p.reset();
+    resolved.tolerance.reset();
+    if (!resolved.integrator) resolved.integrator = plugins::LzbIntegrator::adaptive;
+  }
   const fields::Labels labels = impact_labels(overrides);
   // a scene keeps its LZB options beside the compliant ones ("method" picks), but a step asked
   // of a compliant run is an error

@@ -85,15 +85,6 @@ nlohmann::ordered_json angular_momentum_json(const PackingModel& model,
                                        t, impact.position_after))}};
 }
 
-std::string method_name(const PackingScene& scene, const granular::SceneRun& run) {
-  if (scene.adaptive())
-    return "adaptive LZB, tolerance " + to_text(run.options.adaptive_tolerance());
-  if (run.delta_p) return "LZB impulse steps, delta_p = " + to_text(*run.delta_p) + " N s";
-  if (run.options.relative_delta_p)
-    return "LZB impulse steps, relative_delta_p = " + to_text(*run.options.relative_delta_p);
-  return "compliant contacts integrated in time";
-}
-
 double contacts_per_step(const granular::ImpactOutcome& impact) {
   return impact.result.steps > 0 ? double(impact.result.contact_steps) / double(impact.result.steps)
                                  : 0.0;
@@ -194,7 +185,8 @@ granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingMod
        .record = scene.run_record(),
        .frame_every = scene.record.frames,
        .source = scene.source,
-       .configuration_check = &scene.configuration_check},
+       .configuration_check = &scene.configuration_check,
+       .accuracy = scene.accuracy},
       options);
 }
 
@@ -234,9 +226,10 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"delta_p", run.delta_p ? json(*run.delta_p) : json(nullptr)},
       {"relative_delta_p",
        run.options.relative_delta_p ? json(*run.options.relative_delta_p) : json(nullptr)},
-      {"tolerance", scene.adaptive() ? json(run.options.adaptive_tolerance())
-                    : scene.method == granular::Method::compliant ? json(scene.compliant.tolerance)
-                                                                  : json(nullptr)},
+      {"tolerance", run.method == granular::Method::compliant ? json(run.compliant.tolerance)
+                    : run.options.chosen_integrator() == plugins::LzbIntegrator::adaptive
+                        ? json(run.options.adaptive_tolerance())
+                        : json(nullptr)},
       {"beads", model.bead_count},
       {"bodies", model.body_count()},
       {"post_impact_velocities", per_body(model, after)},
@@ -265,11 +258,11 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"contacts", contacts}};
   if (run.error_estimate)
     summary["error_estimate"] = granular::error_estimate_json(run.error_estimate);
+  if (run.accuracy) summary["accuracy"] = granular::accuracy_json(*run.accuracy);
   return summary;
 }
 
-std::string packing_report(const PackingScene& scene, const PackingModel& model,
-                           const granular::SceneRun& run) {
+std::string packing_report(const PackingModel& model, const granular::SceneRun& run) {
   const granular::ImpactOutcome& impact = run.impact;
   const double before = granular::kinetic_energy(model, model.velocity);
   const double after = granular::kinetic_energy(model, impact.velocity_after);
@@ -289,7 +282,7 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
       "kinetic energy %.6g J -> %.6g J (%+.4f %%); momentum %s -> %s N s\n"
       "fastest body after the impact: %lld, %s m/s (all in summary.json)\n",
       (long long)model.bead_count, (long long)(model.body_count() - model.bead_count),
-      (long long)model.contact_count(), method_name(scene, run).c_str(),
+      (long long)model.contact_count(), granular::describe_method(run).c_str(),
       (long long)impact.result.steps, step_work(impact, run.moving).c_str(),
       (long long)contacts_reached(impact), impact.wall_time, impact.result.duration,
       impact.cut_by_end_time ? "cut by compliant.end_time with contacts still closed"
@@ -315,6 +308,7 @@ std::string packing_report(const PackingScene& scene, const PackingModel& model,
             .c_str());
     report += text;
   }
+  report += granular::describe_error(run);
   if (run.configuration && run.configuration->holds())  // else a warning (packing_command.cpp)
     return report + run.configuration->describe() + "\n";
   return report;

@@ -194,6 +194,7 @@ PackingScene read_packing_scene(json document, const std::string& source,
   scene.directory = directory;
   scene.source = source;
   check_packing(scene, checks);
+  granular::check_accuracy_alone(document, checks);
   scene.contact.check_pairs(material_names(scene), checks);
   check_walls(scene, checks);
   check_strikers(scene, checks);

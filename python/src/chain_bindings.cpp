@@ -51,7 +51,8 @@ py::object read_scene(const py::object& path_argument) {
 void check_scene(const py::object& scene) { chains::build_chain_model(load_scene(scene)); }
 
 ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p,
-                      double max_memory, bool progress) {
+                      std::optional<double> accuracy, bool estimate_error, double max_memory,
+                      bool progress) {
   const chains::ChainScene scene = load_scene(scene_argument);
   const granular::RunLimits limits = memory_limits(max_memory);
   granular::SceneRun run;
@@ -60,11 +61,8 @@ ChainResult run_chain(const py::object& scene_argument, std::optional<double> de
   {
     py::gil_scoped_release computing;
     const chains::ChainModel model = chains::build_chain_model(scene, limits);
-    granular::SceneRunOptions options;
-    options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
-    options.limits = limits;
-    options.progress = meter.get();
-    run = chains::run_chain_scene(scene, model, options);
+    run = chains::run_chain_scene(
+        scene, model, run_options(delta_p, accuracy, estimate_error, limits, meter.get()));
     summary = chains::run_summary(model, run);
   }
   if (meter) meter->finish();
@@ -201,10 +199,14 @@ void bind_chain_result(py::module_& module) {
 // The runs of a chain scene: run, read, check, converge.
 void bind_chain_runs(py::module_& module) {
   module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
-             py::arg("delta_p") = py::none(),
+             py::arg("delta_p") = py::none(), py::arg("accuracy") = py::none(),
+             py::arg("estimate_error") = true,
              py::arg("max_memory") = granular::RunLimits{}.memory_gb, py::arg("progress") = false,
              "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
-             "the method it chooses; delta_p (N s) overrides the scene's impulse step; a run "
+             "the method it chooses; delta_p (N s) overrides the scene's impulse step; accuracy "
+             "(a share of the fastest speed before the impact) overrides its step rule and its "
+             "accuracy: the run chooses its step to meet it; the result's error_estimate comes "
+             "from a companion run at another step, unless estimate_error=False; a run "
              "that would hold more than max_memory GB is refused before it starts; with "
              "progress=True a run longer than 2 s shows where it is on sys.stderr.");
   module.def("read_scene", &read_scene, py::arg("path"),

@@ -71,6 +71,7 @@ py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies, int di
 }
 
 PackingResult run_packing(const py::object& scene_argument, std::optional<double> delta_p,
+                          std::optional<double> accuracy, bool estimate_error,
                           const py::object& data_dir, double max_memory, bool progress) {
   packings::PackingScene scene = load_scene(scene_argument);
   if (!data_dir.is_none())
@@ -83,11 +84,8 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
   {
     py::gil_scoped_release computing;
     model = packings::build_packing_model(scene, limits);
-    granular::SceneRunOptions options;
-    options.impact = {.delta_p = delta_p, .delta_p_name = "delta_p"};
-    options.limits = limits;
-    options.progress = meter.get();
-    run = packings::run_packing_scene(scene, model, options);
+    run = packings::run_packing_scene(
+        scene, model, run_options(delta_p, accuracy, estimate_error, limits, meter.get()));
     summary = packings::packing_summary(scene, model, run);
   }
   if (meter) meter->finish();
@@ -153,10 +151,12 @@ void bind_packings(py::module_& module) {
                std::to_string(result.max_forces.size()) + " contacts>";
       });
   module.def("run_packing", &run_packing, py::arg("scene"), py::kw_only(),
-             py::arg("delta_p") = py::none(), py::arg("data_dir") = py::none(),
+             py::arg("delta_p") = py::none(), py::arg("accuracy") = py::none(),
+             py::arg("estimate_error") = true, py::arg("data_dir") = py::none(),
              py::arg("max_memory") = granular::RunLimits{}.memory_gb, py::arg("progress") = false,
-             "Runs a planar packing scene (a path, or a dict with its keys) as `mimpact packing` "
-             "does; delta_p (N s) overrides the scene's impulse step; bead lists are read only "
+             "Runs a packing scene (a path, or a dict with its keys) as `mimpact packing` "
+             "does; delta_p (N s) overrides the scene's impulse step; accuracy overrides its "
+             "step rule and its accuracy; error_estimate as run_chain(); bead lists are read only "
              "inside data_dir (by default the scene file's directory, or the working directory "
              "for a dict); a run that would hold more than max_memory GB is refused before it "
              "starts; with progress=True a run longer than 2 s shows where it is on sys.stderr.");

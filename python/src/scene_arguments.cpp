@@ -26,6 +26,17 @@ std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress) {
   });
 }
 
+granular::SceneRunOptions run_options(std::optional<double> delta_p, std::optional<double> accuracy,
+                                      bool estimate_error, const granular::RunLimits& limits,
+                                      granular::ProgressMeter* meter) {
+  granular::SceneRunOptions options;
+  options.impact = {.delta_p = delta_p, .accuracy = accuracy};
+  options.limits = limits;
+  options.progress = meter;
+  options.estimate_error = estimate_error;
+  return options;
+}
+
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns) {
   Eigen::MatrixXd matrix(Eigen::Index(rows.size()), Eigen::Index(columns));

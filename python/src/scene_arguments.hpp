@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "mimpact/common/error.hpp"
 #include "mimpact/granular/progress_meter.hpp"
 #include "mimpact/granular/run_limits.hpp"
+#include "mimpact/granular/scene_run.hpp"
 #include "mimpact/granular/time_series.hpp"
 
 // What the chain and packing bindings share: scenes given as a path or a dict, and time series
@@ -35,6 +37,12 @@ granular::RunLimits memory_limits(double max_memory);
 // The progress line of progress=True, on sys.stderr in place (the GIL taken for each write, so
 // that the run may release it); null for False.
 std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress);
+
+// The options of a run from Python's delta_p=, accuracy= and estimate_error=, within `limits`,
+// told to `meter` (or none).
+granular::SceneRunOptions run_options(std::optional<double> delta_p, std::optional<double> accuracy,
+                                      bool estimate_error, const granular::RunLimits& limits,
+                                      granular::ProgressMeter* meter);
 
 // [sample][column] as a samples x columns array
 Eigen::MatrixXd table(const std::vector<std::vector<double>>& rows, std::size_t columns);

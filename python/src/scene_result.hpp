@@ -49,7 +49,17 @@ void bind_scene_result(pybind11::class_<Result>& result) {
                     "None, or when the scene records: dict of 'time' (s), 'contacts', 'forces' "
                     "(N, samples x contacts), 'bodies', 'velocities' (m/s, samples x bodies, "
                     "x dimension in a packing)")
-      .def_readonly("summary", &Result::summary, "everything summary.json holds");
+      .def_readonly("summary", &Result::summary, "everything summary.json holds")
+      .def_property_readonly(
+          "error_estimate",
+          [](const Result& self) { return self.summary.attr("get")("error_estimate"); },
+          "None (estimate_error=False), or dict of 'rms' and 'worst' (the error of the "
+          "velocities after the impact, of the fastest speed before it, RMS over the bodies and "
+          "the worst body), 'method' and 'companion_seconds'")
+      .def_property_readonly(
+          "accuracy", [](const Result& self) { return self.summary.attr("get")("accuracy"); },
+          "None, or when asked for an accuracy: dict of 'asked', 'met', 'runs' and the step "
+          "chosen ('tolerance' or 'delta_p')");
 }
 
 }  // namespace mimpact::python

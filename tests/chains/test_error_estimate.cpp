@@ -5,6 +5,7 @@
 // out here, are estimated at 0.34 of their true error (the design page's table).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -12,6 +13,7 @@
 #include "mimpact/chains/chain_model.hpp"
 #include "mimpact/chains/chain_run.hpp"
 #include "mimpact/chains/chain_scene.hpp"
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::testing {
 namespace {
@@ -99,6 +101,62 @@ TEST(ErrorEstimate, CompliantContactsByACompanionAtTenTimesTheTolerance) {
       scene.source = label("compliant, e", e, tolerance);
       expect_honest(estimated(scene, c1(e, compliant(tolerance / 1000))), scene.source);
     }
+}
+
+// The worst body's true error of a run asked for `accuracy` (the scene's "accuracy"), against
+// the same method at a step 1 000 times finer than the one the run chose.
+double worst_true_error(const std::string& how, double accuracy, const char* step_field) {
+  char text[160];
+  std::snprintf(text, sizeof text, R"(%s, "accuracy": %g)", how.c_str(), accuracy);
+  const chains::ChainScene scene = c1(1.0, text);
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  const granular::SceneRun run = chains::run_chain_scene(scene, model);
+  EXPECT_TRUE(run.accuracy && run.accuracy->met) << text;
+  EXPECT_LE(run.error_estimate->worst, accuracy) << text;
+  EXPECT_EQ(run.accuracy->step, step_field);
+  // the impulse steps' limit is the adaptive integrator's (docs/model.md, section 10): at a
+  // tolerance of 1e-12 it stands for delta_p 1 000 times finer at a thousandth of the cost
+  chains::ChainScene reference = scene;
+  reference.accuracy.reset();
+  if (scene.method == granular::Method::compliant) {
+    reference.compliant.tolerance = run.accuracy->value / 1000.0;
+  } else {
+    reference.impact.integrator = plugins::LzbIntegrator::adaptive;
+    reference.impact.tolerance =
+        std::string(step_field) == "delta_p" ? 1e-12 : std::max(run.accuracy->value / 1000, 1e-13);
+  }
+  const Eigen::VectorXd exact = chains::run_chain_scene(reference, model).impact.velocity_after;
+  double worst = 0.0;
+  for (Eigen::Index b = 0; b < exact.size(); ++b)
+    worst = std::max(worst, std::abs(run.impact.velocity_after[b] - exact[b]));
+  std::printf("%s: accuracy %g, %s %.3g in %d runs: estimate %.3g, true %.3g\n", how.c_str(),
+              accuracy, step_field, run.accuracy->value, run.accuracy->runs,
+              run.error_estimate->worst, worst);
+  return worst;  // of the striker's 1 m/s
+}
+
+TEST(Accuracy, EachMethodChoosesAStepThatMeetsIt) {
+  for (double accuracy : {1e-4, 1e-6}) {
+    EXPECT_LE(worst_true_error(R"("impact": {"integrator": "impulse-step"})", accuracy, "delta_p"),
+              accuracy);
+    EXPECT_LE(worst_true_error(R"("impact": {"integrator": "adaptive"})", accuracy, "tolerance"),
+              accuracy);
+    EXPECT_LE(worst_true_error(R"("method": "compliant")", accuracy, "tolerance"), accuracy);
+  }
+}
+
+TEST(Accuracy, IsAloneWithTheStepRuleInAScene) {
+  for (const char* how : {R"("impact": {"delta_p": 1e-5}, "accuracy": 1e-4)",
+                          R"("impact": {"tolerance": 1e-5}, "accuracy": 1e-4)",
+                          R"("compliant": {"tolerance": 1e-5}, "accuracy": 1e-4)"}) {
+    try {
+      c1(1.0, how);
+      ADD_FAILURE() << how << " was taken";
+    } catch (const InvalidInput& error) {
+      EXPECT_NE(std::string(error.what()).find("beside accuracy = 0.0001"), std::string::npos)
+          << error.what();
+    }
+  }
 }
 
 }  // namespace

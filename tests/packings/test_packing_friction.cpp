@@ -212,7 +212,7 @@ void expect_conserved(const PackingCase& run, const char* what) {
   EXPECT_GT(ledger.slip.sum(), 1e-4 * energy);
   EXPECT_LE(ledger.kinetic_after + ledger.rotational_after, energy);
   // the console tells the same: the slip's work, and an angular momentum kept to 9 digits
-  const std::string report = packings::packing_report(run.scene, model, run.run);
+  const std::string report = packings::packing_report(model, run.run);
   const std::size_t at = report.find("angular momentum [");
   ASSERT_NE(at, std::string::npos) << report;
   const std::string moments = report.substr(at + 17, report.find(" N m s", at) - at - 17);

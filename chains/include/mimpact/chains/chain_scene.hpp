@@ -120,6 +120,8 @@ struct ChainScene {
   granular::RecordSpec record;
   granular::Method method = granular::Method::lzb;
   granular::CompliantSpec compliant;
+  // the error asked of the answer (granular::kAccuracyRange): the run chooses its step
+  std::optional<double> accuracy;
   // N: a constant force on the first bead pushes the chain against its wall (compliant only)
   double precompression = 0.0;
   std::string source = "scene";  // the file it was read from, for messages
@@ -136,6 +138,7 @@ struct ChainScene {
     field("method", self.method);
     field("compliant", self.compliant);
     field("precompression", self.precompression, at_least(0.0, "N"));
+    field("accuracy", self.accuracy, granular::kAccuracyRange);
   }
 
   int bead_count() const;

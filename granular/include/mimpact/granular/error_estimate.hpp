@@ -25,25 +25,70 @@ struct ErrorEstimate {
   double companion_seconds = 0.0;  // the companion run's wall time (s)
 };
 
-// The companion of a run: its step rule, and how its difference scales to the run's error.
+// The step options of a run: the LZB method's and the compliant method's.
+struct StepOptions {
+  plugins::LzbImpactOptions impact;
+  CompliantSpec compliant;
+};
+
+// The one number a run's error follows, k: delta_p (N s), relative_delta_p, or a tolerance.
+struct StepRule {
+  enum class Kind { delta_p, relative_delta_p, lzb_tolerance, compliant_tolerance };
+  Kind kind = Kind::delta_p;
+  double value = 0.0;      // the run's k
+  double finest = 0.0;     // the smallest k the field allows
+  double loosest = 0.0;    // the largest
+  double safety = 1.0;     // error(k) = safety |v(k) - v(r k)| / |r - 1|
+  double companion = 1.0;  // r of the companion of a run: coarser where the range allows
+  std::string name;        // "delta_p", "tolerance"
+
+  // `options` with k = value.
+  StepOptions at(const StepOptions& options, double value) const;
+};
+
+// The step rule of a run by `method` with the resolved options.
+StepRule step_rule(const ContactModel& model, Method method, const StepOptions& options);
+
+// The companion of a run: its step options, and how its difference scales to the run's error.
 struct Companion {
-  plugins::LzbImpactOptions impact;  // the LZB method's options, at the companion's step
-  CompliantSpec compliant;           // the compliant method's, at the companion's tolerance
-  double scale = 1.0;                // error = scale x |v - v_companion|, per body
+  StepOptions options;
+  double scale = 1.0;  // error = scale x |v - v_companion|, per body
   std::string method;
 };
 
-// The companion of a run by `method` with the resolved `impact` options and `compliant` spec:
-// twice delta_p (or half, where twice leaves its range), scale 2 / |r - 1|; ten times the
-// tolerance (or a tenth, where ten times leaves the range of `frozen` integration), scale
-// 3 / |r - 1|.
-Companion companion_of(const ContactModel& model, Method method,
-                       const plugins::LzbImpactOptions& impact, const CompliantSpec& compliant);
+// The companion of a run at `rule.value` from a run at `value`: scale rule.safety / |r - 1| with
+// r = value / rule.value.
+Companion companion_at(const StepRule& rule, const StepOptions& options, double value);
+// The run's own companion: r = rule.companion, twice delta_p (or half, where twice leaves its
+// range: then with twice the steps allowed); ten times the tolerance (or a tenth).
+Companion companion_of(const StepRule& rule, const StepOptions& options);
 
 // The estimate from the run's and its companion's velocities (per coordinate, as
 // ImpactOutcome::velocity_after).
 ErrorEstimate estimate_error(const ContactModel& model, const Eigen::VectorXd& velocity,
                              const Eigen::VectorXd& companion_velocity, const Companion& companion);
+
+// A run asked for an accuracy (of the answer, as ErrorEstimate::worst): how it met it.
+struct AccuracyRun {
+  double asked = 0.0;
+  bool met = false;    // the estimate's worst body is within it
+  int runs = 0;        // of the scene, the answer's and its companions'
+  std::string step;    // the step rule's field: "delta_p" (N s) or "tolerance"
+  double value = 0.0;  // the answer's
+};
+
+// The step options of a first run asked for `accuracy` (docs/design/error_estimates.md,
+// "Accuracy"): a tolerance of the accuracy; delta_p of kFirstDeltaP x the accuracy's share of
+// the striker's momentum, coarse, so that its pair predicts the step at little cost.
+StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
+                       double accuracy);
+// The next k of a run whose estimate at rule.value was `estimate` (> accuracy): the error taken
+// proportional to k, aimed below the accuracy, at least rule.companion times finer, at least
+// rule.finest.
+double next_step(const StepRule& rule, double estimate, double accuracy);
+
+// summary.json's "accuracy": {"asked", "met", "runs", and the step rule's field}.
+nlohmann::ordered_json accuracy_json(const AccuracyRun& accuracy);
 
 // summary.json's "error_estimate": {"rms", "worst", "method", "companion_seconds"}, or null
 // where the run made none.

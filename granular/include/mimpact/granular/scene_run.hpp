@@ -45,12 +45,15 @@ struct SceneRunSpec {
   const std::string& source;  // the scene file, for messages
   // an LZB run of beads (model.beads) compares its frozen configuration with the moving geometry
   const ConfigurationCheckSpec* configuration_check = nullptr;
+  // the scene's "accuracy": the run chooses its step to meet it (resolve_accuracy)
+  std::optional<double> accuracy;
 };
 
 struct SceneRun {
   ImpactOutcome impact;
   Method method = Method::lzb;
-  plugins::LzbImpactOptions options;  // the impact's options, as resolved
+  plugins::LzbImpactOptions options;  // the impact's options, as run
+  CompliantSpec compliant;            // the compliant method's, as run
   std::optional<double> delta_p;      // N s, of the impulse steps; none for the other methods
   bool recorded = false;              // series (and frames, if asked for) hold the scene's record
   TimeSeries series;
@@ -58,7 +61,9 @@ struct SceneRun {
   // the LZB run's frozen configuration against the beads as they move, when it was checked
   std::optional<ConfigurationCheck> configuration;
   MovingContactsStats moving;  // the work of a run in the moving geometry (zero otherwise)
-  std::optional<ErrorEstimate> error_estimate;  // when SceneRunOptions::estimate_error
+  // when SceneRunOptions::estimate_error, or asked for an accuracy
+  std::optional<ErrorEstimate> error_estimate;
+  std::optional<AccuracyRun> accuracy;  // how the run met the accuracy it was asked for
 };
 
 // A new kernel system of the model (body b is the model's body b), as the scene starts: a run
@@ -68,10 +73,17 @@ using SystemFactory = std::function<std::shared_ptr<kernel::NonSmoothDynamicalSy
 // The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
 // event-driven scheme, or the compliant contacts integrated in time, as the scene says, on
 // a system from `build_system`. An LZB run of beads is then checked against the
-// moving geometry as spec.configuration_check says. Throws InvalidInput for a missing or
+// moving geometry as spec.configuration_check says. Asked for an accuracy, the run estimates
+// its error and runs again at the step its estimate predicts until the estimate meets it (or
+// the step rule's range ends: AccuracyRun::met). Throws InvalidInput for a missing or
 // out-of-range delta_p, a delta_p given to another method or alongside relative_delta_p, and a
 // recording beyond options.limits.
 SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
                    const SceneRunSpec& spec, const SceneRunOptions& options = {});
+
+// The method of a run and its step, in words: "adaptive LZB, tolerance 1e-06".
+std::string describe_method(const SceneRun& run);
+// The run's error estimate, and how it met its accuracy, in a line ("" when it made none).
+std::string describe_error(const SceneRun& run);
 
 }  // namespace mimpact::granular

@@ -198,16 +198,36 @@ void lend_material(nlohmann::json& document, std::initializer_list<const char*> 
 // What a caller may choose over a scene's "impact": the command line's --delta-p, Python's
 // delta_p=.
 struct ImpactOverrides {
-  std::optional<double> delta_p;         // N s
-  std::string delta_p_name = "delta_p";  // what messages call it: "--delta-p"
+  std::optional<double> delta_p;           // N s
+  std::string delta_p_name = "delta_p";    // what messages call it: "--delta-p"
+  std::optional<double> accuracy;          // over the scene's step rule and its "accuracy"
+  std::string accuracy_name = "accuracy";  // "--accuracy"
 };
+
+// A scene's "accuracy": the error asked of the answer, a share of the fastest speed before the
+// impact, for its worst body (ErrorEstimate::worst); the run chooses its step to meet it.
+inline constexpr Allowed kAccuracyRange =
+    within(1e-12, 0.1).described("1e-12 <= accuracy <= 0.1 (of the fastest speed before impact)");
+
+// Refuses a step rule beside a scene document's "accuracy" (impact.delta_p, relative_delta_p,
+// tolerance, compliant.tolerance): the accuracy chooses the step.
+void check_accuracy_alone(const nlohmann::json& document, const SceneChecks& checks);
+
+// The accuracy a run is asked for: the caller's, else the scene's unless the caller chose a
+// delta_p. Throws InvalidInput naming both when the caller gave both, and the caller's accuracy
+// out of kAccuracyRange.
+std::optional<double> resolve_accuracy(std::optional<double> scene_accuracy,
+                                       const ImpactOverrides& overrides);
 
 // The scene's impact options with the overrides, checked by the one rule of the impact options
 // (plugins::LzbImpactOptions::check) for the LZB method; an override given to the compliant
-// method is refused. Throws InvalidInput naming `source` and each field where it was given.
+// method is refused. Throws InvalidInput naming `source` and each field where it was given. Asked
+// for an `accuracy` (resolve_accuracy), the step fields are left to the run, and an LZB run with
+// no integrator named takes the adaptive one.
 plugins::LzbImpactOptions resolve_impact(const plugins::LzbImpactOptions& impact, Method method,
                                          const ImpactOverrides& overrides,
-                                         const std::string& source);
+                                         const std::string& source,
+                                         std::optional<double> accuracy = {});
 // What messages call the impact options' fields, given the overrides.
 fields::Labels impact_labels(const ImpactOverrides& overrides);
 

@@ -32,8 +32,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
 // A few lines for people: sizes, method, steps and contacts per step, energy and momentum, the
 // fastest bodies after the impact, and an LZB run's configuration check when it holds (when it
 // does not, the caller warns with ConfigurationCheck::describe()).
-std::string packing_report(const PackingScene& scene, const PackingModel& model,
-                           const granular::SceneRun& run);
+std::string packing_report(const PackingModel& model, const granular::SceneRun& run);
 
 // The geometry for viewers and plots: "body,x,y,radius,mass" per body, and
 // "contact,first,second,wall,nx,ny,x,y" per contact (second -1 for a wall, whose index is

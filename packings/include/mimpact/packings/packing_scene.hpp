@@ -172,6 +172,8 @@ struct PackingScene {
   RecordSpec record;
   granular::Method method = granular::Method::lzb;
   granular::CompliantSpec compliant;
+  // the error asked of the answer (granular::kAccuracyRange): the run chooses its step
+  std::optional<double> accuracy;
   // an LZB run against the moving geometry (docs/packings.md)
   granular::ConfigurationCheckSpec configuration_check;
   std::filesystem::path directory;  // of the scene file: bead lists are found from it
@@ -190,6 +192,7 @@ struct PackingScene {
     field("method", self.method);
     field("compliant", self.compliant);
     field("configuration_check", self.configuration_check);
+    field("accuracy", self.accuracy, granular::kAccuracyRange);
   }
 
   bool adaptive() const {
