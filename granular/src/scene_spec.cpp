@@ -93,7 +93,8 @@ fields::Labels impact_labels(const ImpactOverrides& overrides) {
 }
 
 void check_accuracy_alone(const nlohmann::json& document, const SceneChecks& checks) {
-  if (!document.is_object() || !document.contains("accuracy")) return;
+  if (!document.is_object() || !document.contains("accuracy") || document["accuracy"].is_null())
+    return;
   for (const char* pointer : {"/impact/delta_p", "/impact/relative_delta_p", "/impact/tolerance",
                               "/compliant/tolerance"}) {
     const json::json_pointer field(pointer);
