@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "mimpact/common/error.hpp"
 #include "mimpact/numerics/lzb_adaptive_options.hpp"
 
 namespace mimpact::granular {
@@ -17,9 +18,13 @@ constexpr double kDeltaPSafety = 1.25;
 constexpr double kToleranceSafety = 3.0;
 
 // A first impulse step this many times the accuracy's share of the momentum: the impulse steps'
-// error is 1 to 13 times delta_p / (m V) on the chains of docs/performance.md, so that the first
-// pair is about ten times coarser than the answer and costs a tenth of it.
+// error is 1 to 13 (RMS) and about 35 (worst body, C1) times delta_p / (m V), so that the first
+// pair is ten to a few hundred times coarser than the answer; within these shares of the
+// momentum, where the steps are first order (C1: 0.93 of the true error from the companion's
+// difference at 3e-3 m V) and the pair, cheap, tells the steps the answer needs before it runs.
 constexpr double kFirstDeltaP = 10.0;
+constexpr double kFinestFirstDeltaP = 1e-3;
+constexpr double kCoarsestFirstDeltaP = 1e-2;
 // A refinement aims at this share of the accuracy: first order in delta_p predicts its step
 // closely; a tolerance's error is proportional within a factor of about 3.
 constexpr double kDeltaPAim = 0.8;
@@ -30,6 +35,17 @@ std::string said(const std::string& what, double ratio, double scale) {
   std::snprintf(text, sizeof text, "a companion run at %.3g x the %s, its difference x %.3g", ratio,
                 what.c_str(), scale);
   return text;
+}
+
+// An impulse step finer than impact.max_steps allows for `accuracy`: refused, naming the
+// accuracy rather than the delta_p the run chose.
+[[noreturn]] void fail_finer_than_allowed(double accuracy, double delta_p, double steps,
+                                          std::int64_t max_steps) {
+  throw InvalidInput("accuracy = " + to_text(accuracy) + " needs delta_p of about " +
+                     to_text(delta_p) + " N s, about " + rounded_text(steps) +
+                     " impulse steps, more than impact.max_steps = " + std::to_string(max_steps) +
+                     "; allowed: a larger accuracy, a larger impact.max_steps, or \"integrator\": "
+                     "\"adaptive\"");
 }
 
 }  // namespace
@@ -78,6 +94,7 @@ StepRule step_rule(const ContactModel& model, Method method, const StepOptions& 
             .value = *options.impact.delta_p,
             .finest = largest_momentum(model) / double(options.impact.impulse_steps.max_steps),
             .loosest = 0.5 * smallest_momentum(model),
+            .max_steps = options.impact.impulse_steps.max_steps,
             .safety = kDeltaPSafety,
             .companion = 2.0,
             .name = "delta_p"};
@@ -120,17 +137,24 @@ StepOptions first_step(const ContactModel& model, Method method, const StepOptio
   else if (options.impact.chosen_integrator() == plugins::LzbIntegrator::adaptive)
     first.impact.tolerance = accuracy;
   else
-    first.impact.delta_p = kFirstDeltaP * accuracy * smallest_momentum(model);
+    first.impact.delta_p =
+        std::clamp(kFirstDeltaP * accuracy, kFinestFirstDeltaP, kCoarsestFirstDeltaP) *
+        smallest_momentum(model);
   const StepRule rule = step_rule(model, method, first);
   return rule.at(first, std::clamp(rule.value, rule.finest, rule.loosest));
 }
 
-double next_step(const StepRule& rule, double estimate, double accuracy) {
+double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps) {
   const bool tolerance = rule.kind == StepRule::Kind::lzb_tolerance ||
                          rule.kind == StepRule::Kind::compliant_tolerance;
   const double aimed =
-      rule.value * (accuracy / estimate) * (tolerance ? kToleranceAim : kDeltaPAim);
-  return std::max(rule.finest, std::min(aimed, rule.value / rule.companion));
+      std::min(rule.value * (accuracy / estimate) * (tolerance ? kToleranceAim : kDeltaPAim),
+               rule.value / rule.companion);
+  if (tolerance) return std::max(rule.finest, aimed);
+  const double needed = double(steps) * rule.value / aimed;  // steps go as 1 / delta_p
+  if (!(needed <= double(rule.max_steps)))
+    fail_finer_than_allowed(accuracy, aimed, needed, rule.max_steps);
+  return aimed;
 }
 
 nlohmann::ordered_json accuracy_json(const AccuracyRun& accuracy) {

@@ -173,7 +173,7 @@ SceneRun SceneRuns::to_accuracy(StepOptions step, double accuracy) const {
   while (estimate.worst > accuracy && std::isfinite(estimate.worst) && rule.value > rule.finest &&
          runs < kMostRuns) {
     StepRule finer = rule;
-    finer.value = next_step(rule, estimate.worst, accuracy);
+    finer.value = next_step(rule, estimate.worst, accuracy, run.impact.result.steps);
     step = finer.at(step, finer.value);
     const double seconds = estimate.companion_seconds + run.impact.wall_time;
     const Eigen::VectorXd previous = std::move(run.impact.velocity_after);

@@ -85,3 +85,10 @@ def test_the_accuracy_is_alone_with_its_step_rule(c1, cli, tmp_path):
     del in_file["impact"]
     done, summary = run_cli(cli, "chain", in_file, tmp_path, "--delta-p", "1e-6")
     assert "accuracy" not in summary and summary["delta_p"] == 1e-6
+
+
+def test_an_accuracy_beyond_the_step_budget_is_refused_after_a_cheap_pair(c1):
+    c1["impact"] = {"integrator": "impulse-step"}
+    with pytest.raises(ValueError, match=r"accuracy = 1e-09 needs delta_p of about .* impulse "
+                                         r"steps, more than impact.max_steps = 1000000000"):
+        mimpact.run_chain(c1, accuracy=1e-9)

@@ -449,6 +449,11 @@ def random_input(rng, seeds):
     if rng.random() < 0.1:
         arguments += ["--delta-p", rng.choice(["1e-6", "1e-12", "0", "nan", "1e999", "-1",
                                                 "1e300"])]
+    if rng.random() < 0.1:
+        arguments += ["--accuracy", rng.choice(["1e-3", "1e-5", "0", "nan", "1", "-1e-4",
+                                                 "1e300"])]
+    if rng.random() < 0.05:
+        arguments += ["--no-error-estimate"]
     if kind == "chain" and rng.random() < 0.05:
         arguments += ["--tolerance", rng.choice(["1e-3", "0", "nan", "1e-20"])]
     return kind, files, arguments

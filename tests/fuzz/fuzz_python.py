@@ -144,6 +144,10 @@ def scene_case(rng, mimpact):
     if rng.random() < 0.3:
         keywords["delta_p"] = rng.choice([1e-6, 0.0, -1.0, math.nan, math.inf, 1e-300, "x",
                                           2 ** 64])
+    if rng.random() < 0.1:
+        keywords["accuracy"] = rng.choice([1e-3, 1e-5, 0.0, math.nan, 1.0, -1e-4, "x"])
+    if rng.random() < 0.05:
+        keywords["estimate_error"] = False
     if rng.random() < 0.2 and "max_memory" in (mimpact.run_chain.__doc__ or ""):
         keywords["max_memory"] = rng.choice([0.5, 0.0, -1.0, math.nan, math.inf, 1e-9])
     run = mimpact.run_chain if kind == "chain" else mimpact.run_packing

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -35,12 +36,13 @@ struct StepOptions {
 struct StepRule {
   enum class Kind { delta_p, relative_delta_p, lzb_tolerance, compliant_tolerance };
   Kind kind = Kind::delta_p;
-  double value = 0.0;      // the run's k
-  double finest = 0.0;     // the smallest k the field allows
-  double loosest = 0.0;    // the largest
-  double safety = 1.0;     // error(k) = safety |v(k) - v(r k)| / |r - 1|
-  double companion = 1.0;  // r of the companion of a run: coarser where the range allows
-  std::string name;        // "delta_p", "tolerance"
+  double value = 0.0;          // the run's k
+  double finest = 0.0;         // the smallest k the field allows
+  double loosest = 0.0;        // the largest
+  std::int64_t max_steps = 0;  // the impulse steps' budget
+  double safety = 1.0;         // error(k) = safety |v(k) - v(r k)| / |r - 1|
+  double companion = 1.0;      // r of the companion of a run: coarser where the range allows
+  std::string name;            // "delta_p", "tolerance"
 
   // `options` with k = value.
   StepOptions at(const StepOptions& options, double value) const;
@@ -82,10 +84,11 @@ struct AccuracyRun {
 // the striker's momentum, coarse, so that its pair predicts the step at little cost.
 StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
                        double accuracy);
-// The next k of a run whose estimate at rule.value was `estimate` (> accuracy): the error taken
-// proportional to k, aimed below the accuracy, at least rule.companion times finer, at least
-// rule.finest.
-double next_step(const StepRule& rule, double estimate, double accuracy);
+// The next k of a run whose estimate at rule.value was `estimate` (> accuracy) in `steps`: the
+// error taken proportional to k, aimed below the accuracy, at least rule.companion times finer,
+// a tolerance at least rule.finest. Throws InvalidInput, naming the accuracy, for an impulse
+// step whose steps (as 1 / delta_p) would pass impact.max_steps.
+double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps);
 
 // summary.json's "accuracy": {"asked", "met", "runs", and the step rule's field}.
 nlohmann::ordered_json accuracy_json(const AccuracyRun& accuracy);
