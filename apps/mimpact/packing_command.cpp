@@ -81,9 +81,9 @@ int packing_command(const std::vector<std::string>& arguments) {
   run_options.progress = progress.get();
   const granular::SceneRun run = packings::run_packing_scene(scene, model, run_options);
   if (progress) progress->finish();
-  const nlohmann::ordered_json summary = packings::packing_summary(scene, model, run);
+  const nlohmann::ordered_json summary = packings::packing_summary(model, run);
   if (!quiet) std::cerr << scene_file << ": " << packings::packing_report(model, run);
-  if (run.configuration && !run.configuration->holds())  // even when quiet: the model is wrong
+  if (run.configuration_fails())  // even when quiet: the model is wrong
     std::cerr << scene_file << ": warning: " << run.configuration->describe() << "\n";
   if (run.impact.result.status != numerics::ImpactStatus::terminated)
     throw Error(scene_file + ": " + run.impact.result.message + "; no output written");

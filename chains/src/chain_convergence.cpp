@@ -34,7 +34,8 @@ void check_lzb(const ChainScene& scene) {
   if (scene.method != granular::Method::lzb)
     throw InvalidInput(
         "the convergence study runs the LZB method over delta_p or its tolerance; the scene has "
-        "method \"compliant\"");
+        "method \"" +
+        std::string(enum_name(scene.method)) + "\"");
 }
 
 }  // namespace

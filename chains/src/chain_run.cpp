@@ -14,7 +14,11 @@ granular::SceneRun run_chain_scene(const ChainScene& scene, const ChainModel& mo
        .record = scene.record,
        .frame_every = 0,
        .source = scene.source,
-       .accuracy = scene.accuracy},
+       .accuracy = scene.accuracy,
+       .lzb_unfit =
+           scene.precompression > 0.0
+               ? "a precompressed chain: the LZB impact starts from beads that barely touch"
+               : ""},
       options);
 }
 
@@ -22,6 +26,7 @@ nlohmann::ordered_json run_summary(const ChainModel& model, const granular::Scen
   nlohmann::ordered_json summary =
       chain_summary(model, run.impact, run.delta_p, run.recorded ? &run.series : nullptr);
   summary["method"] = std::string(enum_name(run.method));
+  if (!run.why.empty()) summary["method_choice"] = run.why;
   if (run.error_estimate)
     summary["error_estimate"] = granular::error_estimate_json(run.error_estimate);
   if (run.accuracy) summary["accuracy"] = granular::accuracy_json(*run.accuracy);

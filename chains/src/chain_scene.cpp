@@ -58,10 +58,10 @@ void check_record(const ChainScene& scene, const granular::SceneChecks& checks) 
 // A static force only the compliant method, with a wall, can hold.
 void check_precompression(const ChainScene& scene, const granular::SceneChecks& checks) {
   if (scene.precompression == 0.0) return;
-  if (scene.method != granular::Method::compliant)
+  if (scene.method == granular::Method::lzb)
     checks.fail("precompression = " + to_text(scene.precompression) +
-                " N needs method \"compliant\": the LZB impact starts from beads that barely "
-                "touch");
+                " N needs method \"compliant\" (or \"auto\"): the LZB impact starts from beads "
+                "that barely touch");
   if (!scene.wall) checks.fail("precompression needs a wall for the chain to be pressed against");
   if (!scene.compliant.end_time)
     checks.fail(
@@ -87,7 +87,8 @@ ChainScene read_chain_scene(json document, const std::string& source,
   check_record(scene, checks);
   check_precompression(scene, checks);
   scene.compliant.check_tolerance(false, checks);  // a chain's gaps are linear: frozen
-  if (scene.method == granular::Method::compliant)
+  if (scene.method == granular::Method::compliant ||
+      (scene.method == granular::Method::automatic && scene.precompression > 0.0))
     granular::check_compliant_restitution(scene.contact, checks);
   return scene;
 }

@@ -194,10 +194,9 @@ SceneRun SceneRuns::to_accuracy(StepOptions step, double accuracy) const {
   return run;
 }
 
-}  // namespace
-
-SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
-                   const SceneRunSpec& spec, const SceneRunOptions& options) {
+// The scene's run by spec.method, LZB or compliant.
+SceneRun run_method(const ContactModel& model, const SystemFactory& build_system,
+                    const SceneRunSpec& spec, const SceneRunOptions& options) {
   const SceneRuns runs{
       .model = model,
       .build_system = build_system,
@@ -220,6 +219,66 @@ SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
   return run;
 }
 
+// "method": "auto" with neither an accuracy nor a step rule asks for this one.
+constexpr double kAutomaticAccuracy = 1e-3;
+
+// "method": "auto": LZB where its frozen configuration is the beads' own (a chain) or within the
+// accuracy of them (the configuration check), else the compliant contacts; SceneRun::why says
+// which and why.
+SceneRun run_automatic(const ContactModel& model, const SystemFactory& build_system,
+                       const SceneRunSpec& spec, const SceneRunOptions& options) {
+  SceneRunSpec chosen = spec;
+  const plugins::LzbImpactOptions& impact = spec.impact;
+  if (!resolve_accuracy(spec.accuracy, options.impact) && !options.impact.delta_p &&
+      !impact.delta_p && !impact.relative_delta_p && !impact.tolerance)
+    chosen.accuracy = kAutomaticAccuracy;
+  const double accuracy =
+      resolve_accuracy(chosen.accuracy, options.impact).value_or(kAutomaticAccuracy);
+  char why[512];
+  if (!spec.lzb_unfit.empty() || !spec.configuration_check || !model.beads) {
+    chosen.method = spec.lzb_unfit.empty() ? Method::lzb : Method::compliant;
+    SceneRun run = run_method(model, build_system, chosen, options);
+    run.why = spec.lzb_unfit.empty()
+                  ? "LZB: the contacts of a chain stay on its line, where LZB's frozen "
+                    "configuration is the beads' own"
+                  : "the compliant contacts: " + spec.lzb_unfit;
+    return run;
+  }
+  ConfigurationCheckSpec check = *spec.configuration_check;
+  check.enabled = true;
+  check.accuracy = accuracy;
+  chosen.configuration_check = &check;
+  chosen.method = Method::lzb;
+  SceneRun lzb = run_method(model, build_system, chosen, options);
+  const ConfigurationCheck& configuration = *lzb.configuration;
+  if (!configuration.not_made.empty()) {
+    lzb.why = "LZB: the moving geometry could not check its frozen configuration (" +
+              configuration.not_made + ")";
+    return lzb;
+  }
+  std::snprintf(why, sizeof why,
+                "the beads as they move part from LZB's frozen configuration by %.2g of the "
+                "fastest speed at worst (the configuration check), %s the accuracy %.3g",
+                configuration.worst_error, configuration.holds() ? "within" : "beyond", accuracy);
+  if (configuration.holds()) {
+    lzb.why = std::string("LZB: ") + why;
+    return lzb;
+  }
+  chosen.method = Method::compliant;
+  SceneRun compliant = run_method(model, build_system, chosen, options);
+  compliant.configuration = lzb.configuration;
+  compliant.why = std::string("the compliant contacts in the moving geometry: ") + why;
+  return compliant;
+}
+
+}  // namespace
+
+SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
+                   const SceneRunSpec& spec, const SceneRunOptions& options) {
+  return spec.method == Method::automatic ? run_automatic(model, build_system, spec, options)
+                                          : run_method(model, build_system, spec, options);
+}
+
 std::string describe_method(const SceneRun& run) {
   if (run.method == Method::compliant)
     return "compliant contacts integrated in time, tolerance " + to_text(run.compliant.tolerance);
@@ -231,14 +290,15 @@ std::string describe_method(const SceneRun& run) {
 }
 
 std::string describe_error(const SceneRun& run) {
-  if (!run.error_estimate) return "";
+  std::string lines = run.why.empty() ? "" : "method auto: " + run.why + "\n";
+  if (!run.error_estimate) return lines;
   const ErrorEstimate& estimate = *run.error_estimate;
   char text[512];
   std::snprintf(text, sizeof text,
                 "error estimate: worst body %.2g, RMS %.2g of the fastest speed before the impact "
                 "(%s; %.3g s)\n",
                 estimate.worst, estimate.rms, estimate.method.c_str(), estimate.companion_seconds);
-  std::string line = text;
+  std::string line = lines + text;
   if (run.accuracy) {
     std::snprintf(text, sizeof text, "accuracy %.3g %s in %d runs, %s %.3g\n", run.accuracy->asked,
                   run.accuracy->met ? "met" : "NOT met (the step's range ends)", run.accuracy->runs,

@@ -190,8 +190,7 @@ granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingMod
       options);
 }
 
-nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
-                                       const granular::SceneRun& run) {
+nlohmann::ordered_json packing_summary(const PackingModel& model, const granular::SceneRun& run) {
   using json = nlohmann::ordered_json;
   const granular::ImpactOutcome& impact = run.impact;
   json contacts = json::array();
@@ -219,8 +218,9 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
   const Eigen::VectorXd body_impulses = (after - model.velocity).cwiseProduct(model.mass);
   json summary{
       {"status", impact.cut_by_end_time ? "end_time" : numerics::to_string(impact.result.status)},
-      {"method", scene.method == granular::Method::lzb ? "lzb" : "compliant"},
-      {"integrator", scene.method == granular::Method::compliant
+      {"method", enum_name(run.method)},
+      {"method_choice", run.why.empty() ? json(nullptr) : json(run.why)},
+      {"integrator", run.method == granular::Method::compliant
                          ? json(nullptr)
                          : json(enum_name(run.options.chosen_integrator()))},
       {"delta_p", run.delta_p ? json(*run.delta_p) : json(nullptr)},
@@ -238,7 +238,7 @@ nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingM
       {"steps", impact.result.steps},
       // the LZB integrators' work; the compliant contacts' is moving_geometry's
       {"contacts_per_step",
-       scene.method == granular::Method::lzb ? json(contacts_per_step(impact)) : json(nullptr)},
+       run.method == granular::Method::lzb ? json(contacts_per_step(impact)) : json(nullptr)},
       {"contacts_reached", contacts_reached(impact)},
       {"impacts", impact.impact_times.size()},
       {"impact_time", impact.impact_time},

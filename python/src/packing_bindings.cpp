@@ -86,11 +86,11 @@ PackingResult run_packing(const py::object& scene_argument, std::optional<double
     model = packings::build_packing_model(scene, limits);
     run = packings::run_packing_scene(
         scene, model, run_options(delta_p, accuracy, estimate_error, limits, meter.get()));
-    summary = packings::packing_summary(scene, model, run);
+    summary = packings::packing_summary(model, run);
   }
   if (meter) meter->finish();
   // the scene needs the moving geometry: a warning, as from the command line
-  if (run.configuration && !run.configuration->holds() &&
+  if (run.configuration_fails() &&
       PyErr_WarnEx(PyExc_UserWarning, run.configuration->describe().c_str(), 1) < 0)
     throw py::error_already_set();
   const granular::ImpactOutcome& impact = run.impact;

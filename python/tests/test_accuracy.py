@@ -92,3 +92,25 @@ def test_an_accuracy_beyond_the_step_budget_is_refused_after_a_cheap_pair(c1):
     with pytest.raises(ValueError, match=r"accuracy = 1e-09 needs delta_p of about .* impulse "
                                          r"steps, more than impact.max_steps = 1000000000"):
         mimpact.run_chain(c1, accuracy=1e-9)
+
+
+def test_method_auto_decides_and_says_why(cli, tmp_path):
+    import warnings
+    hexagonal = {"material": {"density": 7780, "young": 203e9, "poisson": 0.3},
+                 "lattice": {"type": "hexagonal", "rows": 8, "columns": 8, "radius": 0.005},
+                 "strikers": [{"target": [7, 3], "radius": 0.005, "velocity": [0, -1]}],
+                 "contact": {"restitution": 0.9}, "compliant": {"end_time": 5e-4},
+                 "method": "auto"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the method chosen is the right one: no warning
+        result = mimpact.run_packing(hexagonal)
+    assert result.summary["method"] == "compliant" and result.accuracy["asked"] == 1e-3
+    assert "beyond the accuracy 0.001" in result.summary["method_choice"]
+    square = dict(hexagonal, lattice=dict(hexagonal["lattice"], type="square"),
+                  strikers=[dict(hexagonal["strikers"][0], target=[7, 2])])
+    (tmp_path / "scene.json").write_text(json.dumps(square))
+    done = subprocess.run([cli, "packing", str(tmp_path / "scene.json")], capture_output=True,
+                          text=True, timeout=60)
+    summary = json.loads(done.stdout)
+    assert summary["method"] == "lzb" and "method auto: LZB: the beads as they move" in done.stderr
+    assert "warning" not in done.stderr

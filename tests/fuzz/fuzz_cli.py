@@ -43,7 +43,7 @@ SPECIAL_NUMBERS = ["0", "-0", "-0.0", "5e-324", "2.2250738585072014e-308", "1e-3
                    "9223372036854775807", "9223372036854775808", "18446744073709551616",
                    "100000000000000000000000000000", "-1", "-2147483649", "2147483648", "1e8",
                    "1e9", "0.5", "3"]
-SPECIAL_STRINGS = ["", "left", "right", "adaptive", "compliant", "asynchronous", "impulse-step",
+SPECIAL_STRINGS = ["", "left", "right", "adaptive", "compliant", "auto", "asynchronous", "impulse-step",
                    "frozen", "open", "nan", "inf", "x" * 100_000, "\u00e9\u00e8", "\x01",
                    "/dev/zero", "../secret.csv", "beads.csv"]
 

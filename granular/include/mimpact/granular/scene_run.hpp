@@ -47,6 +47,9 @@ struct SceneRunSpec {
   const ConfigurationCheckSpec* configuration_check = nullptr;
   // the scene's "accuracy": the run chooses its step to meet it (resolve_accuracy)
   std::optional<double> accuracy;
+  // why the LZB method cannot run the scene, or empty: "method": "auto" takes the compliant
+  // contacts then
+  std::string lzb_unfit;
 };
 
 struct SceneRun {
@@ -64,6 +67,13 @@ struct SceneRun {
   // when SceneRunOptions::estimate_error, or asked for an accuracy
   std::optional<ErrorEstimate> error_estimate;
   std::optional<AccuracyRun> accuracy;  // how the run met the accuracy it was asked for
+  std::string why;                      // "method": "auto": the method chosen, and why
+
+  // The answer is LZB's and its configuration check exceeds the accuracy: the scene needs the
+  // compliant contacts (callers warn with configuration->describe()).
+  bool configuration_fails() const {
+    return method == Method::lzb && configuration && !configuration->holds();
+  }
 };
 
 // A new kernel system of the model (body b is the model's body b), as the scene starts: a run
@@ -73,7 +83,9 @@ using SystemFactory = std::function<std::shared_ptr<kernel::NonSmoothDynamicalSy
 // The LZB impacts (impulse steps at delta_p, or the adaptive integrator) through the
 // event-driven scheme, or the compliant contacts integrated in time, as the scene says, on
 // a system from `build_system`. An LZB run of beads is then checked against the
-// moving geometry as spec.configuration_check says. Asked for an accuracy, the run estimates
+// moving geometry as spec.configuration_check says. "method": "auto" runs LZB, then the
+// compliant contacts where its configuration check exceeds the accuracy (SceneRun::why). Asked
+// for an accuracy, the run estimates
 // its error and runs again at the step its estimate predicts until the estimate meets it (or
 // the step rule's range ends: AccuracyRun::met). Throws InvalidInput for a missing or
 // out-of-range delta_p, a delta_p given to another method or alongside relative_delta_p, and a

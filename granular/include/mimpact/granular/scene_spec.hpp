@@ -48,11 +48,14 @@ struct RecordSpec {
 };
 
 // How the impact is computed: the LZB impulse dynamics (the default) or the compliant contacts
-// integrated in time (its reference for e = 1; the only one for a precompressed chain).
-enum class Method { lzb, compliant };
+// integrated in time (its reference for e = 1; the only one for a precompressed chain), or the
+// cheaper of the two that the scene's configuration lets meet its accuracy ("auto",
+// granular::run_scene).
+enum class Method { lzb, compliant, automatic };
 constexpr auto enum_names(Method) {
   using Name = std::pair<Method, std::string_view>;
-  return std::array{Name{Method::lzb, "lzb"}, Name{Method::compliant, "compliant"}};
+  return std::array{Name{Method::lzb, "lzb"}, Name{Method::compliant, "compliant"},
+                    Name{Method::automatic, "auto"}};
 }
 
 // What a contact that opens during the impact does when its bodies approach again: close its

@@ -26,8 +26,7 @@ granular::SceneRun run_packing_scene(const PackingScene& scene, const PackingMod
 // (the packing's beads, then the strikers) and the impulse each body received, per contact its
 // bodies, peak force, time and impulse, steps and the contacts integrated per step (the work),
 // kinetic energy, vector momentum and the energy ledger.
-nlohmann::ordered_json packing_summary(const PackingScene& scene, const PackingModel& model,
-                                       const granular::SceneRun& run);
+nlohmann::ordered_json packing_summary(const PackingModel& model, const granular::SceneRun& run);
 
 // A few lines for people: sizes, method, steps and contacts per step, energy and momentum, the
 // fastest bodies after the impact, and an LZB run's configuration check when it holds (when it
