@@ -301,8 +301,8 @@ std::string describe_error(const SceneRun& run) {
   std::string line = lines + text;
   if (run.accuracy) {
     std::snprintf(text, sizeof text, "accuracy %.3g %s in %d runs, %s %.3g\n", run.accuracy->asked,
-                  run.accuracy->met ? "met" : "NOT met (the step's range ends)", run.accuracy->runs,
-                  run.accuracy->step.c_str(), run.accuracy->value);
+                  run.accuracy->met ? "met" : "NOT met (the step's range or six runs ended first)",
+                  run.accuracy->runs, run.accuracy->step.c_str(), run.accuracy->value);
     line += text;
   }
   return line;

@@ -95,7 +95,8 @@ SceneRun run_scene(const ContactModel& model, const SystemFactory& build_system,
 
 // The method of a run and its step, in words: "adaptive LZB, tolerance 1e-06".
 std::string describe_method(const SceneRun& run);
-// The run's error estimate, and how it met its accuracy, in a line ("" when it made none).
+// What the run chose and how sure it is, a line each: "method auto:" and why, the error
+// estimate, how it met its accuracy ("" when it has none of them).
 std::string describe_error(const SceneRun& run);
 
 }  // namespace mimpact::granular
