@@ -26,7 +26,8 @@ echo "== benchmarks, one quick pass (they must run; their figures come from scri
 quick_pass=("bench_lzb" "bench_lemke"
             "bench_work_precision --benchmark_filter=WorkPrecision/C1/(lzb/1e-02|compliant/1e-03)/|ChainLength/.*/10/"
             "bench_packing --benchmark_filter=/16/"
-            "bench_packing_peers --benchmark_filter=^BM_PackingLammps/0/0/")
+            "bench_packing_peers --benchmark_filter=^BM_PackingLammps/0/0/"
+            "bench_accuracy --benchmark_filter=C1.e=1,.adaptive/1e-04")
 for bench in "${quick_pass[@]}"; do
   log=build/release/bench/${bench%% *}.log
   build/release/bench/$bench --benchmark_min_time=0.001 >"$log" 2>&1 || { cat "$log"; exit 1; }

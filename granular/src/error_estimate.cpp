@@ -11,11 +11,14 @@ namespace mimpact::granular {
 
 namespace {
 
-// The measured ratios of a companion's difference to the true error, at r = 2 for delta_p and
-// r = 10 for a tolerance (docs/design/error_estimates.md): 0.93 to 1.00 of (r - 1) for delta_p,
-// 0.11 to 7 of (r - 1) for a tolerance; these factors make the estimate bound the true error.
+// error(k) = safety |v(k) - v(r k)| / |r - 1|, with these factors over the measured ratios of a
+// companion's difference to the true error (docs/design/error_estimates.md): at r = 2 for
+// delta_p, 0.93 to 1.00 of (r - 1); at r = 0.1 for a tolerance, 0.80 to 1.21 of |r - 1| (the
+// finer run nearly the exact answer), so that the estimate is 1.2 to 1.8 times the true error; at
+// r = 10, where a tolerance has no finer one, 0.11 to 7 of (r - 1).
 constexpr double kDeltaPSafety = 1.25;
-constexpr double kToleranceSafety = 3.0;
+constexpr double kFinerToleranceSafety = 1.35;
+constexpr double kCoarserToleranceSafety = 3.0;
 
 // A first impulse step this many times the accuracy's share of the momentum: the impulse steps'
 // error is 1 to 13 (RMS) and about 35 (worst body, C1) times delta_p / (m V), so that the first
@@ -78,16 +81,18 @@ StepRule step_rule(const ContactModel& model, Method method, const StepOptions& 
             .finest = 1e-14,
             .loosest =
                 frozen ? CompliantSpec::kLoosestFrozenTolerance : CompliantSpec::kLoosestTolerance,
-            .safety = kToleranceSafety,
-            .companion = 10.0,
+            .finer_safety = kFinerToleranceSafety,
+            .coarser_safety = kCoarserToleranceSafety,
+            .companion = 0.1,
             .name = "tolerance"};
   } else if (options.impact.chosen_integrator() == plugins::LzbIntegrator::adaptive) {
     rule = {.kind = StepRule::Kind::lzb_tolerance,
             .value = options.impact.adaptive_tolerance(),
             .finest = numerics::LzbAdaptiveOptions::kToleranceRange.lower,
             .loosest = numerics::LzbAdaptiveOptions::kToleranceRange.upper,
-            .safety = kToleranceSafety,
-            .companion = 10.0,
+            .finer_safety = kFinerToleranceSafety,
+            .coarser_safety = kCoarserToleranceSafety,
+            .companion = 0.1,
             .name = "tolerance"};
   } else if (options.impact.delta_p) {
     rule = {.kind = StepRule::Kind::delta_p,
@@ -95,7 +100,8 @@ StepRule step_rule(const ContactModel& model, Method method, const StepOptions& 
             .finest = largest_momentum(model) / double(options.impact.impulse_steps.max_steps),
             .loosest = 0.5 * smallest_momentum(model),
             .max_steps = options.impact.impulse_steps.max_steps,
-            .safety = kDeltaPSafety,
+            .finer_safety = kDeltaPSafety,
+            .coarser_safety = kDeltaPSafety,
             .companion = 2.0,
             .name = "delta_p"};
   } else {
@@ -103,7 +109,8 @@ StepRule step_rule(const ContactModel& model, Method method, const StepOptions& 
             .value = options.impact.relative_delta_p.value_or(0.0),
             .finest = 0.0,
             .loosest = 0.5,
-            .safety = kDeltaPSafety,
+            .finer_safety = kDeltaPSafety,
+            .coarser_safety = kDeltaPSafety,
             .companion = 2.0,
             .name = "delta_p"};
   }
@@ -112,19 +119,23 @@ StepRule step_rule(const ContactModel& model, Method method, const StepOptions& 
 
 Companion companion_at(const StepRule& rule, const StepOptions& options, double value) {
   const double ratio = value / rule.value;
-  const double scale = rule.safety / std::abs(ratio - 1.0);
+  const double safety = ratio < 1.0 ? rule.finer_safety : rule.coarser_safety;
+  const double scale = safety / std::abs(ratio - 1.0);
   return {
       .options = rule.at(options, value), .scale = scale, .method = said(rule.name, ratio, scale)};
 }
 
 Companion companion_of(const StepRule& rule, const StepOptions& options) {
-  const double coarser = rule.value * rule.companion;
-  if (coarser <= rule.loosest) return companion_at(rule, options, coarser);
-  Companion finer = companion_at(rule, options, rule.value / rule.companion);
+  const double preferred = rule.value * rule.companion;
+  if (preferred >= rule.finest && preferred <= rule.loosest)
+    return companion_at(rule, options, preferred);
+  Companion other = companion_at(rule, options, rule.value / rule.companion);
   // a finer impulse step takes more steps: as many more are allowed
-  std::int64_t& max_steps = finer.options.impact.impulse_steps.max_steps;
-  max_steps = std::int64_t(std::ceil(double(max_steps) * rule.companion));
-  return finer;
+  if (rule.companion > 1.0) {
+    std::int64_t& max_steps = other.options.impact.impulse_steps.max_steps;
+    max_steps = std::int64_t(std::ceil(double(max_steps) * rule.companion));
+  }
+  return other;
 }
 
 StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
@@ -147,9 +158,9 @@ StepOptions first_step(const ContactModel& model, Method method, const StepOptio
 double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps) {
   const bool tolerance = rule.kind == StepRule::Kind::lzb_tolerance ||
                          rule.kind == StepRule::Kind::compliant_tolerance;
-  const double aimed =
-      std::min(rule.value * (accuracy / estimate) * (tolerance ? kToleranceAim : kDeltaPAim),
-               rule.value / rule.companion);
+  double aimed = rule.value * (accuracy / estimate) * (tolerance ? kToleranceAim : kDeltaPAim);
+  // a coarser companion is the run before: at least that much coarser
+  if (rule.companion > 1.0) aimed = std::min(aimed, rule.value / rule.companion);
   if (tolerance) return std::max(rule.finest, aimed);
   const double needed = double(steps) * rule.value / aimed;  // steps go as 1 / delta_p
   if (!(needed <= double(rule.max_steps)))

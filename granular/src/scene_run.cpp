@@ -126,15 +126,17 @@ struct SceneRuns {
   const SceneRunOptions& options;
   bool record = false;  // the answer's run samples the scene's record
 
-  // The scene's run at the step options `step`, by its method.
-  SceneRun at(const StepOptions& step) const {
+  // The scene's run at the step options `step`, by its method, sampling its record if
+  // `recorded` (the answer's run).
+  SceneRun at(const StepOptions& step, bool recorded) const {
     SceneRun run =
         spec.method == Method::lzb
-            ? run_lzb(model, build_system(), spec, options, step.impact, record)
-            : run_compliant(model, build_system(), spec, options, step.compliant, record);
+            ? run_lzb(model, build_system(), spec, options, step.impact, recorded)
+            : run_compliant(model, build_system(), spec, options, step.compliant, recorded);
     run.compliant = step.compliant;
     return run;
   }
+  SceneRun at(const StepOptions& step) const { return at(step, record); }
 
   // The velocities after the impact of an unrecorded run at `step` (a companion), and its
   // computation's time (s, as ImpactOutcome::wall_time) added to `seconds`.
@@ -158,15 +160,27 @@ struct SceneRuns {
   }
 
   SceneRun to_accuracy(StepOptions step, double accuracy) const;
+  SceneRun with_coarser_companions(StepOptions step, StepRule rule, double accuracy) const;
+  SceneRun with_finer_companions(StepOptions step, StepRule rule, double accuracy) const;
 };
 
-// Runs of the scene at finer and finer steps until one's estimate meets `accuracy`, each the
-// companion of the next (docs/design/error_estimates.md, "Accuracy"): the answer is the last.
+// Runs of the scene at finer and finer steps until one's estimate meets `accuracy`
+// (docs/design/error_estimates.md, "Accuracy"): the answer is the last; at most kMostRuns.
 constexpr int kMostRuns = 6;
 
 SceneRun SceneRuns::to_accuracy(StepOptions step, double accuracy) const {
   step = first_step(model, spec.method, step, accuracy);
-  StepRule rule = step_rule(model, spec.method, step);
+  const StepRule rule = step_rule(model, spec.method, step);
+  SceneRun run = rule.companion > 1.0 ? with_coarser_companions(step, rule, accuracy)
+                                      : with_finer_companions(step, rule, accuracy);
+  run.accuracy->asked = accuracy;
+  run.accuracy->met = run.error_estimate->worst <= accuracy;
+  return run;
+}
+
+// delta_p: each run is the coarser companion of the next.
+SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
+                                            double accuracy) const {
   SceneRun run = estimated(step);
   ErrorEstimate estimate = *run.error_estimate;
   int runs = 2;
@@ -186,11 +200,60 @@ SceneRun SceneRuns::to_accuracy(StepOptions step, double accuracy) const {
     ++runs;
   }
   run.error_estimate = estimate;
-  run.accuracy = AccuracyRun{.asked = accuracy,
-                             .met = estimate.worst <= accuracy,
-                             .runs = runs,
-                             .step = rule.name,
-                             .value = rule.value};
+  run.accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value};
+  return run;
+}
+
+// A tolerance: the run and its finer companion; while the estimate is above the accuracy, the
+// companion becomes the run where the estimate is within kChainReach of the accuracy, else a run
+// starts at the step the estimate predicts. Companions sample no record: an answer that was one
+// runs again to sample it.
+constexpr double kChainReach = 20.0;
+
+SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, double accuracy) const {
+  SceneRun run = at(step);
+  bool recorded = record;
+  double others = 0.0;  // s, of the runs that are not the answer
+  int runs = 1;
+  ErrorEstimate estimate;
+  while (true) {
+    const Companion companion = companion_of(rule, step);
+    SceneRun finer = at(companion.options, false);
+    ++runs;
+    estimate =
+        estimate_error(model, run.impact.velocity_after, finer.impact.velocity_after, companion);
+    if (estimate.worst <= accuracy || !std::isfinite(estimate.worst) || rule.value <= rule.finest ||
+        runs >= kMostRuns) {
+      others += finer.impact.wall_time;
+      break;
+    }
+    others += run.impact.wall_time;
+    const double finer_value = rule.value * rule.companion;  // the companion's, in range
+    const bool chain = finer_value >= rule.finest && estimate.worst <= kChainReach * accuracy;
+    const double next =
+        chain ? finer_value : next_step(rule, estimate.worst, accuracy, run.impact.result.steps);
+    step = rule.at(step, next);
+    rule.value = next;
+    if (chain) {
+      run = std::move(finer);
+      recorded = false;
+    } else {
+      others += finer.impact.wall_time;
+      run = {};
+      run = at(step);
+      recorded = record;
+      ++runs;
+    }
+  }
+  if (!recorded && record) {
+    others += run.impact.wall_time;
+    run = {};
+    run = at(step);
+    ++runs;
+  }
+  estimate.companion_seconds = others;
+  run.error_estimate = estimate;
+  run.accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value};
   return run;
 }
 

@@ -4,7 +4,7 @@ in a scratch directory that holds the checkout's examples/ and scripts/ and its 
 
 - `sh` blocks run in bash, stopping at the first failing command; a `text` block right after
   one (a line of prose between at most) is its output: each of its lines must be in what the block printed (`...` stands for lines
-  left out; the seconds of computation may differ);
+  left out; the seconds of computation, and of an error estimate's companions, may differ);
 - `python` blocks of one page run in order in one interpreter (later blocks use what earlier
   ones defined); `>>>` blocks run as doctests there; a block marked `standalone` runs alone as a
   script (one that starts Dask workers, which import it);
@@ -95,6 +95,7 @@ def run(command, scratch, shell=True):
 
 def normalised(line):
     line = re.sub(r"in [0-9.e+-]+ s of computation", "in X s of computation", line)
+    line = re.sub(r"; [0-9.e+-]+ s\)$", "; X s)", line)  # the error estimate's companions' time
     return " ".join(line.split())
 
 

@@ -11,10 +11,11 @@
 #include "mimpact/plugins/lzb_impact_options.hpp"
 
 // A run's estimate of its own answer's error, from a companion run of the same scene at another
-// step (docs/design/error_estimates.md): the impulse steps are first order in delta_p, the
-// adaptive LZB's and the compliant method's global error about proportional to their tolerance,
-// so that error(k) ~ |v(k) - v(r k)| / |r - 1| (Richardson), times a safety factor that the
-// measured ratios call for.
+// step (docs/design/error_estimates.md): the impulse steps are first order in delta_p, so that
+// error(k) ~ |v(k) - v(2 k)| (Richardson); the adaptive LZB's and the compliant method's global
+// error follows their tolerance too loosely for a coarser run to tell it, so their companion
+// runs at a tenth of it, nearly the exact answer: error(k) ~ |v(k) - v(k / 10)|. Each times a
+// safety factor that the measured ratios call for.
 namespace mimpact::granular {
 
 struct ErrorEstimate {
@@ -40,9 +41,11 @@ struct StepRule {
   double finest = 0.0;         // the smallest k the field allows
   double loosest = 0.0;        // the largest
   std::int64_t max_steps = 0;  // the impulse steps' budget
-  double safety = 1.0;         // error(k) = safety |v(k) - v(r k)| / |r - 1|
-  double companion = 1.0;      // r of the companion of a run: coarser where the range allows
-  std::string name;            // "delta_p", "tolerance"
+  // error(k) = safety |v(k) - v(r k)| / |r - 1|, for a finer companion (r < 1) and a coarser
+  double finer_safety = 1.0;
+  double coarser_safety = 1.0;
+  double companion = 1.0;  // r of a run's companion (2 or 0.1), where the range allows
+  std::string name;        // "delta_p", "tolerance"
 
   // `options` with k = value.
   StepOptions at(const StepOptions& options, double value) const;
@@ -58,11 +61,12 @@ struct Companion {
   std::string method;
 };
 
-// The companion of a run at `rule.value` from a run at `value`: scale rule.safety / |r - 1| with
+// The companion of a run at `rule.value` from a run at `value`: scale safety / |r - 1| with
 // r = value / rule.value.
 Companion companion_at(const StepRule& rule, const StepOptions& options, double value);
 // The run's own companion: r = rule.companion, twice delta_p (or half, where twice leaves its
-// range: then with twice the steps allowed); ten times the tolerance (or a tenth).
+// range: then with twice the steps allowed); a tenth of the tolerance (or ten times it, where a
+// tenth leaves its range).
 Companion companion_of(const StepRule& rule, const StepOptions& options);
 
 // The estimate from the run's and its companion's velocities (per coordinate, as
@@ -85,8 +89,9 @@ struct AccuracyRun {
 StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
                        double accuracy);
 // The next k of a run whose estimate at rule.value was `estimate` (> accuracy) in `steps`: the
-// error taken proportional to k, aimed below the accuracy, at least rule.companion times finer,
-// a tolerance at least rule.finest. Throws InvalidInput, naming the accuracy, for an impulse
+// error taken proportional to k, aimed below the accuracy, at least rule.companion times finer
+// where the companion is coarser (the run before is the next one's), a tolerance at least
+// rule.finest. Throws InvalidInput, naming the accuracy, for an impulse
 // step whose steps (as 1 / delta_p) would pass impact.max_steps.
 double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps);
 

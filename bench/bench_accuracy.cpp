@@ -1,0 +1,176 @@
+// The cost of asking for an accuracy (issue 48, docs/accuracy.md): for each scene of the error
+// corpus (tests/data/error_corpus/corpus.json) by its method and accuracy 1e-4, 1e-6 and 1e-8,
+// the run asked for it, its companions included, against the cheapest single step that would
+// have met it, known in hindsight: of the steps a quarter decade apart from a hundred times
+// coarser than the one the run chose to ten times finer, the coarsest whose worst body is within
+// the accuracy of the same scene 10 000 times finer than the run's step (the impulse steps: of
+// their limit, the adaptive LZB at 1e-4 of the accuracy). Each time is the least of as many
+// repeats as fit in half a second.
+//
+// Counters: ratio (the run's time over the hindsight step's), runs (the answer's and its
+// companions'), met (the estimate within the accuracy), estimate and truth (worst body, of the
+// striker's speed), step (the answer's delta_p in N s or tolerance) and hindsight_step. An
+// accuracy whose impulse steps would pass impact.max_steps is refused by the run: skipped here.
+// The last lines: the median ratio, per accuracy and over all.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "../tests/support/error_corpus.hpp"
+#include "mimpact/common/error.hpp"
+
+namespace {
+
+using namespace mimpact;
+using testing::CorpusCase;
+using testing::CorpusScene;
+
+std::map<double, std::vector<double>>& ratios() {
+  static std::map<double, std::vector<double>> by_accuracy;
+  return by_accuracy;
+}
+
+// The least time (s) of `run` over as many repeats as fit in kRepeatSeconds (at least one).
+constexpr double kRepeatSeconds = 0.5;
+template <class Run>
+double least_seconds(const Run& run) {
+  double least = INFINITY, spent = 0.0;
+  do {
+    const auto start = std::chrono::steady_clock::now();
+    run();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    least = std::min(least, seconds);
+    spent += seconds;
+  } while (spent + least < kRepeatSeconds);
+  return least;
+}
+
+bool compliant(const nlohmann::json& scene) { return scene.value("method", "lzb") == "compliant"; }
+
+// At 1e-8 the impulse steps take 1e8 steps and more (most are refused by impact.max_steps): their
+// limit, the adaptive LZB, is the method there; the benchmark leaves them out.
+bool impulse_steps(const nlohmann::json& scene) {
+  return !compliant(scene) &&
+         scene.value("impact", nlohmann::json::object()).value("integrator", "") != "adaptive";
+}
+
+// The scene with its step rule replaced by "accuracy" (the impulse steps kept as its method).
+nlohmann::json asking(nlohmann::json scene, double accuracy) {
+  if (compliant(scene)) {
+    scene["compliant"].erase("tolerance");
+  } else {
+    nlohmann::json& impact = scene["impact"];
+    if (impact.value("integrator", "") != "adaptive") impact["integrator"] = "impulse-step";
+    for (const char* field : {"delta_p", "relative_delta_p", "tolerance"}) impact.erase(field);
+  }
+  scene["accuracy"] = accuracy;
+  return scene;
+}
+
+// The scene at a single step: `field` "delta_p" (N s) or "tolerance" at `value`.
+nlohmann::json at_step(nlohmann::json scene, const std::string& field, double value) {
+  scene.erase("accuracy");
+  if (compliant(scene))
+    scene["compliant"]["tolerance"] = value;
+  else
+    scene["impact"][field] = value;
+  return scene;
+}
+
+struct Hindsight {
+  double seconds = INFINITY;  // the fastest single step's that met the accuracy
+  double step = 0.0;
+};
+
+// The cheapest single step near `chosen` whose worst body is within `accuracy` of `exact`: the
+// coarsest that meets it, a quarter decade at a time from a hundred times coarser down.
+Hindsight hindsight(const CorpusScene& entry, const granular::AccuracyRun& chosen,
+                    const Eigen::VectorXd& exact, const granular::ContactModel& model) {
+  for (int quarter = 8; quarter >= -4; --quarter) {
+    const double step = chosen.value * std::pow(10.0, quarter / 4.0);
+    try {
+      const CorpusCase single =
+          testing::prepare_corpus_scene(at_step(entry.scene, chosen.step, step), entry.name);
+      granular::SceneRun run = single.run({.record = false});
+      if (testing::error_against(model, run.impact.velocity_after, exact).worst > chosen.asked)
+        continue;
+      return {least_seconds([&] { run = single.run({.record = false}); }), step};
+    } catch (const InvalidInput&) {  // beyond the step's range, or its max_steps
+    }
+  }
+  return {};
+}
+
+void accuracy_cost(benchmark::State& state, const CorpusScene* entry, double accuracy) {
+  CorpusCase asked;
+  granular::SceneRun run;
+  double seconds = 0.0;
+  try {
+    asked = testing::prepare_corpus_scene(asking(entry->scene, accuracy), entry->name);
+    for (auto _ : state) {
+      seconds = least_seconds([&] { run = asked.run({.record = false}); });
+      state.SetIterationTime(seconds);
+    }
+  } catch (const InvalidInput& refused) {
+    state.SkipWithError(refused.what());
+    return;
+  }
+  const granular::AccuracyRun& chosen = *run.accuracy;
+  nlohmann::json finest = at_step(entry->scene, chosen.step, chosen.value / 10.0);
+  const nlohmann::json reference = testing::finer_by_1000(finest, 1e-4 * accuracy);
+  const Eigen::VectorXd exact = testing::run_corpus_scene(reference, entry->name, {.record = false})
+                                    .run.impact.velocity_after;
+  const Hindsight best = hindsight(*entry, chosen, exact, *asked.model);
+  const double ratio = seconds / best.seconds;
+  if (std::isfinite(ratio)) ratios()[accuracy].push_back(ratio);
+  state.counters["ratio"] = ratio;
+  state.counters["runs"] = chosen.runs;
+  state.counters["met"] = chosen.met;
+  state.counters["estimate"] = run.error_estimate->worst;
+  state.counters["truth"] =
+      testing::error_against(*asked.model, run.impact.velocity_after, exact).worst;
+  state.counters["step"] = chosen.value;
+  state.counters["hindsight_step"] = best.step;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  static const std::vector<CorpusScene> corpus = testing::error_corpus(MIMPACT_SOURCE_DIR);
+  for (const CorpusScene& entry : corpus)
+    for (double accuracy : {1e-4, 1e-6, 1e-8}) {
+      if (accuracy < 1e-6 && impulse_steps(entry.scene)) continue;
+      char name[160];
+      std::snprintf(name, sizeof name, "Accuracy/%s/%.0e", entry.name.c_str(), accuracy);
+      benchmark::RegisterBenchmark(name, accuracy_cost, &entry, accuracy)
+          ->Iterations(1)
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond);
+    }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  std::vector<double> all;
+  for (const auto& [accuracy, values] : ratios()) {
+    std::printf("median ratio at accuracy %.0e: %.3g over %zu scenes\n", accuracy, median(values),
+                values.size());
+    all.insert(all.end(), values.begin(), values.end());
+  }
+  std::printf("median ratio over all: %.3g over %zu runs\n", median(all), all.size());
+  return 0;
+}
