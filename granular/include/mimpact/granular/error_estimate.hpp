@@ -84,8 +84,9 @@ struct AccuracyRun {
 };
 
 // The step options of a first run asked for `accuracy` (docs/design/error_estimates.md,
-// "Accuracy"): a tolerance of the accuracy; delta_p of kFirstDeltaP x the accuracy's share of
-// the striker's momentum, coarse, so that its pair predicts the step at little cost.
+// "Accuracy"): a tolerance of the accuracy (ten times it in the moving geometry); delta_p of
+// kFirstDeltaP x the accuracy's share of the striker's momentum, coarse, so that its pair
+// predicts the step at little cost.
 StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
                        double accuracy);
 // The next k of a run whose estimate at rule.value was `estimate` (> accuracy) in `steps`: the
