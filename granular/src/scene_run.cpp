@@ -207,7 +207,7 @@ SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
 // A tolerance: the run and its finer companion; while the estimate is above the accuracy, the
 // companion becomes the run where the estimate is within kChainReach of the accuracy, else a run
 // starts at the step the estimate predicts. Companions sample no record: an answer that was one
-// runs again to sample it.
+// runs again to sample it (beyond kMostRuns).
 constexpr double kChainReach = 20.0;
 
 SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, double accuracy) const {
@@ -222,14 +222,14 @@ SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, doubl
     ++runs;
     estimate =
         estimate_error(model, run.impact.velocity_after, finer.impact.velocity_after, companion);
+    const double finer_value = rule.value * rule.companion;  // the companion's, in range
+    const bool chain = finer_value >= rule.finest && estimate.worst <= kChainReach * accuracy;
     if (estimate.worst <= accuracy || !std::isfinite(estimate.worst) || rule.value <= rule.finest ||
-        runs >= kMostRuns) {
+        runs + (chain ? 1 : 2) > kMostRuns) {
       others += finer.impact.wall_time;
       break;
     }
     others += run.impact.wall_time;
-    const double finer_value = rule.value * rule.companion;  // the companion's, in range
-    const bool chain = finer_value >= rule.finest && estimate.worst <= kChainReach * accuracy;
     const double next =
         chain ? finer_value : next_step(rule, estimate.worst, accuracy, run.impact.result.steps);
     step = rule.at(step, next);
