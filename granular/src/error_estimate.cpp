@@ -19,6 +19,8 @@ namespace {
 constexpr double kDeltaPSafety = 1.25;
 constexpr double kFinerToleranceSafety = 1.35;
 constexpr double kCoarserToleranceSafety = 3.0;
+// A finer companion's budget of steps (impact.max_steps, compliant.max_steps), of the run's.
+constexpr double kFinerCompanionSteps = 4.0;
 
 // A first impulse step this many times the accuracy's share of the momentum: the impulse steps'
 // error is 1 to 13 (RMS) and about 35 (worst body, C1) times delta_p / (m V), so that the first
@@ -131,15 +133,22 @@ Companion companion_at(const StepRule& rule, const StepOptions& options, double 
 
 Companion companion_of(const StepRule& rule, const StepOptions& options) {
   const double preferred = rule.value * rule.companion;
-  if (preferred >= rule.finest && preferred <= rule.loosest)
-    return companion_at(rule, options, preferred);
-  Companion other = companion_at(rule, options, rule.value / rule.companion);
-  // a finer impulse step takes more steps: as many more are allowed
-  if (rule.companion > 1.0) {
-    std::int64_t& max_steps = other.options.impact.impulse_steps.max_steps;
-    max_steps = std::int64_t(std::ceil(double(max_steps) * rule.companion));
+  const double value = preferred >= rule.finest && preferred <= rule.loosest
+                           ? preferred
+                           : rule.value / rule.companion;
+  Companion companion = companion_at(rule, options, value);
+  if (value < rule.value) {
+    // a finer companion takes more steps than the run: as many more are allowed (1 / r for
+    // delta_p, 10^(1/5) = 1.6 for a fifth-order step at a tenth of the tolerance, with room)
+    const double more =
+        rule.kind == StepRule::Kind::delta_p || rule.kind == StepRule::Kind::relative_delta_p
+            ? rule.value / value
+            : kFinerCompanionSteps;
+    for (std::int64_t* max_steps : {&companion.options.impact.impulse_steps.max_steps,
+                                    &companion.options.compliant.max_steps})
+      *max_steps = std::int64_t(std::min(std::ceil(double(*max_steps) * more), 9e18));
   }
-  return other;
+  return companion;
 }
 
 StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,

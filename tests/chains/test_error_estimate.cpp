@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <string>
 
 #include "mimpact/chains/chain_model.hpp"
@@ -100,6 +101,37 @@ TEST(ErrorEstimate, CompliantContactsByACompanionAtATenthOfTheTolerance) {
       scene.source = label("compliant, e", e, tolerance);
       expect_honest(estimated(scene, c1(e, compliant(tolerance / 1000))), scene.source);
     }
+}
+
+// The least max_steps (compliant.max_steps, or impact.max_steps) with which `scene` runs.
+std::int64_t least_budget(chains::ChainScene scene, const chains::ChainModel& model) {
+  std::int64_t fails = 1, runs = 1 << 20;  // bisected: fails < least <= runs
+  while (runs - fails > 1) {
+    const std::int64_t budget = (fails + runs) / 2;
+    scene.compliant.max_steps = scene.impact.impulse_steps.max_steps = budget;
+    try {
+      chains::run_chain_scene(scene, model);
+      runs = budget;
+    } catch (const std::exception&) {
+      fails = budget;
+    }
+  }
+  return runs;
+}
+
+// A finer companion takes more steps than its run: a run within its budget of steps is not
+// refused for its estimate.
+TEST(ErrorEstimate, AFinerCompanionHasTheStepsItNeeds) {
+  for (const char* how : {R"("method": "compliant", "compliant": {"tolerance": 1e-6})",
+                          R"("impact": {"integrator": "adaptive", "tolerance": 1e-6})"}) {
+    chains::ChainScene scene = c1(0.9, how);
+    const chains::ChainModel model = chains::build_chain_model(scene);
+    const std::int64_t budget = least_budget(scene, model);
+    scene.compliant.max_steps = scene.impact.impulse_steps.max_steps = budget;
+    const granular::SceneRun run = chains::run_chain_scene(scene, model, {.estimate_error = true});
+    ASSERT_TRUE(run.error_estimate) << how;
+    EXPECT_LT(run.error_estimate->worst, 1e-4) << how;
+  }
 }
 
 // The worst body's true error of a run asked for `accuracy` (the scene's "accuracy"), against
