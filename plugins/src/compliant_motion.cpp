@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 
 #include "compliant_state.hpp"
 #include "mimpact/plugins/compliant_integrator.hpp"
@@ -196,10 +197,13 @@ void CompliantIntegrator::forget_prediction(Index j) {
 // Behind a wave, bodies left at rest against each other approach with speeds of the order of
 // the integration's own errors. Such a collision changes the velocities by less than the
 // tolerance, and its largest overlap lies below what the error control resolves, so that
-// integrating it would only feed those errors (and keep ever more bodies in motion). Slower than
-// relative_tolerance x the fastest initial speed, a collision is therefore taken as
-// instantaneous, u+ = -e u- by the impulse P = -(1 + e) u- / H_jj, the outcome of an isolated
-// pair. Linear relations and constant diagonal masses only; the ledger books its work
+// integrating it would only feed those errors (and keep ever more bodies in motion). A collision
+// is therefore taken as instantaneous, u+ = -e u- by the impulse P = -(1 + e) u- / H_jj, the
+// outcome of an isolated pair, when it approaches slower than relative_tolerance x the fastest
+// initial speed, or slower than an isolated pair whose largest overlap is the joining overlap
+// delta_res: K delta_res^(1 + eta) / (1 + eta) = u-^2 / (2 H_jj). Integrated, such a contact
+// would join at delta_res under a force its approach never paid for, and leave faster than it
+// came. Linear relations and constant diagonal masses only; the ledger books its work
 // -(u- + u+) P / 2, exactly what the kinetic energy loses.
 bool CompliantIntegrator::collide_instantly(Index j) {
   State& s = *state_;
@@ -216,7 +220,11 @@ bool CompliantIntegrator::collide_instantly(Index j) {
     rate += entry.value * s.anchor_v(b.offset + entry.local);
     h += entry.value * entry.value * b.inverse_diagonal(entry.local);
   }
-  if (!(rate < 0.0 && -rate < slow_speed_)) return false;
+  const numerics::ContactLaw& law = laws_[std::size_t(j)];
+  const double turns_below_resolution =
+      std::sqrt(2.0 * h * law.stiffness * std::pow(s.join_overlap, 1.0 + law.exponent) /
+                (1.0 + law.exponent));
+  if (!(rate < 0.0 && -rate < std::max(slow_speed_, turns_below_resolution))) return false;
   for (Index k : {system_->first_system(j), system_->second_system(j)})
     if (k >= 0) fold_flight(k);
   const double e = laws_[std::size_t(j)].restitution;
