@@ -121,6 +121,7 @@ int chain_command(const std::vector<std::string>& arguments) {
       "GB the run may hold (the chain and its recorded series), 4 by default; a run that needs "
       "more is refused before it starts")("quiet", "no progress or report on stderr");
   add_accuracy_options(visible);
+  add_time_limit_option(visible, limits);
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
@@ -158,7 +159,7 @@ int chain_command(const std::vector<std::string>& arguments) {
   }
   run_options.record = writes_series;
   run_options.limits = limits;
-  const std::unique_ptr<granular::ProgressMeter> progress = progress_line(quiet);
+  const std::unique_ptr<granular::ProgressMeter> progress = progress_line(quiet, limits);
   run_options.progress = progress.get();
   granular::SceneRun run = chains::run_chain_scene(scene, model, run_options);
   if (progress) progress->finish();

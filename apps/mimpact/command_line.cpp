@@ -28,9 +28,19 @@ bool parse_command_line(const std::vector<std::string>& arguments, po::options_d
   return true;
 }
 
-std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet) {
-  if (quiet || !isatty(STDERR_FILENO)) return nullptr;
-  return std::make_unique<granular::ProgressMeter>(granular::stream_sink(stderr));
+std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet,
+                                                       const granular::RunLimits& limits) {
+  const bool shown = !quiet && isatty(STDERR_FILENO);
+  return granular::run_meter(shown ? granular::stream_sink(stderr) : nullptr, limits.seconds,
+                             limits.seconds_option);
+}
+
+void add_time_limit_option(po::options_description& visible, granular::RunLimits& limits) {
+  visible.add_options()(
+      "max-seconds", po::value(&limits.seconds),
+      "wall-clock seconds the run may take (its impact, checks and estimates; no limit by "
+      "default): past them it stops with an error and writes nothing, as LAMMPS's `timer "
+      "timeout` does");
 }
 
 void add_accuracy_options(boost::program_options::options_description& visible) {

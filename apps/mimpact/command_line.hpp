@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mimpact/granular/progress_meter.hpp"
+#include "mimpact/granular/run_limits.hpp"
 #include "mimpact/granular/scene_run.hpp"
 
 namespace mimpact::cli {
@@ -18,9 +19,14 @@ bool parse_command_line(const std::vector<std::string>& arguments,
                         const std::string& positional_name, std::string& positional,
                         boost::program_options::variables_map& values);
 
-// The progress line of a long run on stderr, in place: null with --quiet or when stderr is not
-// a terminal.
-std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet);
+// The meter of a run: its progress line on stderr, in place (none with --quiet or when stderr
+// is not a terminal), and its --max-seconds; null when it has neither.
+std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet,
+                                                       const granular::RunLimits& limits);
+
+// --max-seconds, into limits.seconds, of the chain and packing commands.
+void add_time_limit_option(boost::program_options::options_description& visible,
+                           granular::RunLimits& limits);
 
 // --accuracy and --no-error-estimate, of the chain and packing commands.
 void add_accuracy_options(boost::program_options::options_description& visible);

@@ -56,6 +56,7 @@ int packing_command(const std::vector<std::string>& arguments) {
       "GB the run may hold (the packing, its series and frames), 4 by default; a run that needs "
       "more is refused before it starts")("quiet", "no report on stderr");
   add_accuracy_options(visible);
+  add_time_limit_option(visible, limits);
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;
@@ -77,7 +78,7 @@ int packing_command(const std::vector<std::string>& arguments) {
   run_options.impact = overrides;
   run_options.record = recording && !out.empty();
   run_options.limits = limits;
-  const std::unique_ptr<granular::ProgressMeter> progress = progress_line(quiet);
+  const std::unique_ptr<granular::ProgressMeter> progress = progress_line(quiet, limits);
   run_options.progress = progress.get();
   const granular::SceneRun run = packings::run_packing_scene(scene, model, run_options);
   if (progress) progress->finish();

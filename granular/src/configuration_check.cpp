@@ -85,6 +85,8 @@ ConfigurationCheck check_configuration(const ContactModel& model, const ImpactOu
   try {
     if (progress) progress->begin("configuration check", check.time);
     run = simulate_compliant(model, nullptr, moving, {.limits = limits, .progress = progress});
+  } catch (const TimeLimitReached&) {  // the caller's limit, not the check's budget
+    throw;
   } catch (const BudgetSpent& spent) {
     check.not_made = "the moving geometry would take more than " + std::to_string(kWorkShare) +
                      " times the LZB run's work (" + std::to_string(moving.max_body_steps) +

@@ -1,14 +1,16 @@
 #include "mimpact/granular/progress_meter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
+
+#include "mimpact/common/error.hpp"
 
 namespace mimpact::granular {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
 Clock::duration seconds(double s) {
   return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
 }
@@ -28,10 +30,18 @@ std::string count_text(std::int64_t n) {
 }  // namespace
 
 ProgressMeter::ProgressMeter(Sink sink, double delay, double interval)
-    : sink_(std::move(sink)),
-      interval_(seconds(interval)),
-      start_(Clock::now()),
-      next_(start_ + seconds(delay)) {}
+    : sink_(std::move(sink)), interval_(seconds(interval)), start_(Clock::now()) {
+  if (sink_) next_line_ = start_ + seconds(delay);
+  next_ = next_line_;
+}
+
+void ProgressMeter::limit_time(double limit, std::string option) {
+  limit_seconds_ = limit;
+  limit_option_ = std::move(option);
+  // beyond a year, no limit (and no overflow of the clock's ticks)
+  if (std::isfinite(limit) && limit < 3.2e7) deadline_ = start_ + seconds(limit);
+  next_ = std::min(next_line_, deadline_);
+}
 
 ProgressMeter::~ProgressMeter() { finish(); }
 
@@ -40,9 +50,21 @@ void ProgressMeter::begin(std::string phase, double end_time) {
   end_time_ = end_time;
 }
 
-void ProgressMeter::show(const ProgressState& state) {
+void ProgressMeter::due(const ProgressState& state) {
   const Clock::time_point now = Clock::now();
-  next_ = now + interval_;
+  if (now >= deadline_) {
+    finish();
+    throw TimeLimitReached("the run took more than its " + rounded_text(limit_seconds_) + " s (" +
+                           limit_option_ + "): stopped in the " +
+                           line(state, std::chrono::duration<double>(now - start_).count()) +
+                           "; raise " + limit_option_ + ", or ask for a coarser step or accuracy");
+  }
+  if (now < next_line_) {
+    next_ = std::min(next_line_, deadline_);
+    return;
+  }
+  next_line_ = now + interval_;
+  next_ = std::min(next_line_, deadline_);
   const std::string text = line(state, std::chrono::duration<double>(now - start_).count());
   const std::size_t pad = width_ > text.size() ? width_ - text.size() : 0;
   width_ = text.size();
@@ -80,6 +102,14 @@ ProgressMeter::Sink stream_sink(std::FILE* stream) {
     std::fputs(text.c_str(), stream);
     std::fflush(stream);
   };
+}
+
+std::unique_ptr<ProgressMeter> run_meter(ProgressMeter::Sink sink, double seconds,
+                                         const std::string& option) {
+  if (!sink && !std::isfinite(seconds)) return nullptr;
+  auto meter = std::make_unique<ProgressMeter>(std::move(sink));
+  meter->limit_time(seconds, option);
+  return meter;
 }
 
 }  // namespace mimpact::granular

@@ -24,6 +24,9 @@ std::string size_text(double bytes, int digits) {
 void RunLimits::check() const {
   if (!(memory_gb > 0.0 && std::isfinite(memory_gb)))
     throw InvalidInput(invalid_value_message(memory_option, memory_gb, "> 0 (GB), finite"));
+  if (!(seconds > 0.0))
+    throw InvalidInput(
+        invalid_value_message(seconds_option, seconds, "> 0 (s); default: no limit"));
 }
 
 double model_bytes(double bodies, double contacts, int dimension) {

@@ -138,24 +138,14 @@ struct SceneRuns {
   }
   SceneRun at(const StepOptions& step) const { return at(step, record); }
 
-  // The velocities after the impact of an unrecorded run at `step` (a companion), and its
-  // computation's time (s, as ImpactOutcome::wall_time) added to `seconds`.
-  Eigen::VectorXd velocity_at(const StepOptions& step, double& seconds) const {
-    ImpactOutcome outcome = spec.method == Method::lzb
-                                ? simulate_impacts(model, build_system(), step.impact)
-                                : simulate_compliant(model, build_system(), step.compliant).impact;
-    seconds += outcome.wall_time;
-    return std::move(outcome.velocity_after);
-  }
-
   // The run at `step`, with its companion's estimate of its error.
   SceneRun estimated(const StepOptions& step) const {
     SceneRun run = at(step);
     const Companion companion = companion_of(step_rule(model, spec.method, step), step);
-    double seconds = 0.0;
-    const Eigen::VectorXd velocity = velocity_at(companion.options, seconds);
-    run.error_estimate = estimate_error(model, run.impact.velocity_after, velocity, companion);
-    run.error_estimate->companion_seconds = seconds;
+    const SceneRun other = at(companion.options, false);
+    run.error_estimate =
+        estimate_error(model, run.impact.velocity_after, other.impact.velocity_after, companion);
+    run.error_estimate->companion_seconds = other.impact.wall_time;
     return run;
   }
 

@@ -7,23 +7,28 @@ namespace py = pybind11;
 
 namespace mimpact::python {
 
-granular::RunLimits memory_limits(double max_memory) {
-  const granular::RunLimits limits{.memory_gb = max_memory, .memory_option = "max_memory="};
+granular::RunLimits run_limits(double max_memory, std::optional<double> max_seconds) {
+  granular::RunLimits limits{.memory_gb = max_memory, .memory_option = "max_memory="};
+  if (max_seconds) limits.seconds = *max_seconds;
+  limits.seconds_option = "max_seconds=";
   limits.check();
   return limits;
 }
 
-std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress) {
-  if (!progress) return nullptr;
-  return std::make_unique<granular::ProgressMeter>([](const std::string& text) {
-    py::gil_scoped_acquire python;
-    try {
-      const py::object stderr_stream = py::module_::import("sys").attr("stderr");
-      stderr_stream.attr("write")(text);
-      stderr_stream.attr("flush")();
-    } catch (const py::error_already_set&) {  // a progress line is not worth the run
-    }
-  });
+std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress,
+                                                        const granular::RunLimits& limits) {
+  granular::ProgressMeter::Sink sink;
+  if (progress)
+    sink = [](const std::string& text) {
+      py::gil_scoped_acquire python;
+      try {
+        const py::object stderr_stream = py::module_::import("sys").attr("stderr");
+        stderr_stream.attr("write")(text);
+        stderr_stream.attr("flush")();
+      } catch (const py::error_already_set&) {  // a progress line is not worth the run
+      }
+    };
+  return granular::run_meter(std::move(sink), limits.seconds, limits.seconds_option);
 }
 
 granular::SceneRunOptions run_options(std::optional<double> delta_p, std::optional<double> accuracy,

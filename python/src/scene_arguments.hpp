@@ -31,12 +31,13 @@ auto load_scene_argument(const pybind11::object& scene, Read&& read, Load&& load
                      " is not allowed; allowed: a scene file's path or a dict with its keys");
 }
 
-// The limits of a run from Python's max_memory= (GB), checked.
-granular::RunLimits memory_limits(double max_memory);
+// The limits of a run from Python's max_memory= (GB) and max_seconds= (None: no limit), checked.
+granular::RunLimits run_limits(double max_memory, std::optional<double> max_seconds);
 
 // The progress line of progress=True, on sys.stderr in place (the GIL taken for each write, so
 // that the run may release it); null for False.
-std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress);
+std::unique_ptr<granular::ProgressMeter> progress_meter(bool progress,
+                                                        const granular::RunLimits& limits);
 
 // The options of a run from Python's delta_p=, accuracy= and estimate_error=, within `limits`,
 // told to `meter` (or none).

@@ -328,3 +328,26 @@ def test_item10_messages_name_the_scene_field_and_lengths_are_relative(cli, tmp_
     done, summary = run_cli(cli, "packing", hexagon(1e6), tmp_path)
     assert done.returncode == 0
     np.testing.assert_array_equal(summary["post_impact_velocities"], large)
+
+
+def test_max_seconds_stops_a_long_run_and_writes_nothing(cli, tmp_path):
+    """A wall-clock limit, as LAMMPS's `timer timeout`: the run past it stops with the phase and
+    where it was (the CLI writes no output), from Python as RuntimeError; a limit <= 0 or NaN
+    is refused. 3 x 3 beads at delta_p 5e-12 N s take at least P / delta_p = 8e8 steps."""
+    scene = square_on_a_wall([0.0, 1.0])
+    scene["impact"]["delta_p"] = 5e-12
+    done, _ = run_cli(cli, "packing", scene, tmp_path, "--max-seconds", "0.3")
+    assert done.returncode == 1
+    assert "the run took more than its 0.3 s (--max-seconds): stopped in the LZB impact" \
+        in done.stderr
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(RuntimeError, match=r"more than its 0\.3 s \(max_seconds=\)"):
+        mimpact.run_packing(scene, max_seconds=0.3)
+    chain = {"material": STEEL, "chain": {"segments": [{"count": 3, "radius": 0.01}]},
+             "strikers": [{"side": "left", "radius": 0.01, "velocity": 1.0}],
+             "impact": {"delta_p": 1e-10}}  # P / delta_p = 3.3e8 steps at least
+    with pytest.raises(RuntimeError, match=r"\(max_seconds=\): stopped in the LZB impact"):
+        mimpact.run_chain(chain, max_seconds=0.3)
+    for bad in (0.0, -1.0, math.nan):
+        with pytest.raises(ValueError, match=r"max_seconds= = .* is invalid; allowed: > 0 \(s\)"):
+            mimpact.run_packing(scene, max_seconds=bad)

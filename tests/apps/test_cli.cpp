@@ -290,6 +290,26 @@ TEST(ChainCommand, DeltaPMustResolveTheImpactInMaxSteps) {
   EXPECT_NE(from.err.find("--from = -1 is invalid"), std::string::npos) << from.err;
 }
 
+// A run past --max-seconds stops with the phase and where it was, and writes nothing; C1 at a
+// delta_p of 1e-10 N s (P / delta_p = 3.3e8 steps at least) cannot end in 0.3 s. A limit <= 0 is
+// refused.
+TEST(ChainCommand, MaxSecondsStopsALongRunAndWritesNothing) {
+  const fs::path out = fs::temp_directory_path() / ("mimpact_test_out_" + std::to_string(getpid()));
+  fs::remove_all(out);
+  const CliRun run = mimpact("chain " + scene("c1.json") +
+                             " --delta-p 1e-10 --max-seconds 0.3 --out " + out.string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("the run took more than its 0.3 s (--max-seconds): stopped in the LZB "
+                         "impact: t = "),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun zero = mimpact("chain " + scene("c1.json") + " --max-seconds 0");
+  EXPECT_EQ(zero.exit_code, 1);
+  EXPECT_NE(zero.err.find("--max-seconds = 0 is invalid; allowed: > 0 (s)"), std::string::npos)
+      << zero.err;
+}
+
 // c1.json under the compliant method, cut at `end_time` (s) when given
 // C1's scene text, and a variant of it written to a temporary file named by `tag`.
 std::string c1_text() {

@@ -477,9 +477,14 @@ def main():
     mimpact = str(Path(arguments.mimpact).resolve())
     runner = Runner(mimpact, arguments.timeout, arguments.memory_mb, arguments.sanitized,
                     arguments.slowdown)
-    # a random input runs within 1 GB where the command can be told so (--max-memory)
-    limits = ["--max-memory", "1"] if "max-memory" in subprocess.run(
-        [mimpact, "chain", "--help"], capture_output=True, text=True).stdout else []
+    # a random input runs within 1 GB and half its time where the command can be told so
+    # (--max-memory, --max-seconds): a run stopped there ends cleanly, and is counted
+    chain_help = subprocess.run([mimpact, "chain", "--help"], capture_output=True,
+                                text=True).stdout
+    limits = ["--max-memory", "1"] if "max-memory" in chain_help else []
+    if "max-seconds" in chain_help:
+        limits += ["--max-seconds", f"{arguments.timeout / 2:g}"]
+    stopped = 0  # random inputs stopped by --max-seconds
     failures_dir = Path(arguments.failures)
     counts = {}
 
@@ -525,7 +530,9 @@ def main():
             write_inputs(work, files)
             began = time.monotonic()
             try:
-                runner.run(work, command, command_arguments, existing_output=existing)
+                status, stderr = runner.run(work, command, command_arguments,
+                                            existing_output=existing)
+                stopped += status == 1 and "(--max-seconds)" in stderr
             except Failure as failure:
                 record("input", f"seed{arguments.seed}-{random_count}", str(failure), files,
                        ["mimpact", command] + command_arguments)
@@ -535,6 +542,8 @@ def main():
           f"{time.monotonic() - start:.0f} s; {total} in all, {failed} failed")
     for kind, count in sorted(counts.items()):
         print(f"  {count:5d}  {kind}")
+    if stopped:
+        print(f"{stopped} random inputs stopped cleanly at --max-seconds (long runs, not failures)")
     if slowest:
         print("slowest inputs: " + ", ".join(f"seed{arguments.seed}-{n} {t:.1f} s"
                                               for t, n in reversed(slowest)))

@@ -137,6 +137,10 @@ def clean_error(error):
 
 
 # ------------------------------------------------------------------ the kinds of cases
+# s a scene case may compute (max_seconds=): well inside the default --timeout of a case
+MAX_SECONDS = 10.0
+
+
 def scene_case(rng, mimpact):
     kind = rng.choice(["chain", "packing"])
     scene = mutate_scene(rng, copy.deepcopy(rng.choice(seed_scenes()[kind])))
@@ -150,6 +154,8 @@ def scene_case(rng, mimpact):
         keywords["estimate_error"] = False
     if rng.random() < 0.2 and "max_memory" in (mimpact.run_chain.__doc__ or ""):
         keywords["max_memory"] = rng.choice([0.5, 0.0, -1.0, math.nan, math.inf, 1e-9])
+    if "max_seconds" in (mimpact.run_chain.__doc__ or ""):  # a long run ends cleanly there
+        keywords["max_seconds"] = MAX_SECONDS
     run = mimpact.run_chain if kind == "chain" else mimpact.run_packing
     if kind == "chain" and rng.random() < 0.1:
         return mimpact.converge(scene, tolerance=rng.choice([[1e-3], [0.0], [math.nan], [1, 2, 3]]),

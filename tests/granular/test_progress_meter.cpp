@@ -1,13 +1,15 @@
 // The progress line of a long run (granular/progress_meter.hpp): nothing from a run shorter than
 // its delay, then lines throttled by the clock, each kept in place over the last, and a newline
-// at the end only where a line was shown.
+// at the end only where a line was shown; the run's wall-clock limit, kept with or without a line.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "mimpact/common/error.hpp"
 #include "mimpact/granular/progress_meter.hpp"
 
 namespace mimpact::granular {
@@ -56,6 +58,42 @@ TEST(ProgressMeter, AShorterLineCoversTheLongerOneBeforeIt) {
             std::string::npos);
   EXPECT_EQ(written[1].size(), written[0].size());
   EXPECT_EQ(written[1].back(), ' ');
+}
+
+// Past its limit, the first report stops the run, never before it; the message names the option,
+// the phase and where it was.
+TEST(ProgressMeter, StopsTheRunAtItsTimeLimit) {
+  const std::unique_ptr<ProgressMeter> meter = run_meter(nullptr, 0.05, "--max-seconds");
+  ASSERT_NE(meter, nullptr);
+  meter->begin("LZB impact");
+  const auto start = std::chrono::steady_clock::now();
+  std::int64_t k = 0;
+  std::string message;
+  try {
+    for (; k < std::int64_t(1) << 40; ++k) meter->report({.time = 1e-9 * double(k), .steps = k});
+  } catch (const TimeLimitReached& stopped) {
+    message = stopped.what();
+  }
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(elapsed, 0.05);
+  EXPECT_GT(k, 1000);
+  EXPECT_NE(message.find("the run took more than its 0.05 s (--max-seconds): stopped in the LZB "
+                         "impact: t = "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("raise --max-seconds"), std::string::npos) << message;
+}
+
+TEST(ProgressMeter, ARunWithNeitherLineNorLimitHasNoMeter) {
+  EXPECT_EQ(run_meter(nullptr, std::numeric_limits<double>::infinity(), "--max-seconds"), nullptr);
+  std::vector<std::string> written;
+  const std::unique_ptr<ProgressMeter> shown =
+      run_meter([&](const std::string& text) { written.push_back(text); },
+                std::numeric_limits<double>::infinity(), "--max-seconds");
+  ASSERT_NE(shown, nullptr);
+  shown->report({.time = 0.0, .steps = 1});  // a second before the first line: nothing
+  EXPECT_TRUE(written.empty());
 }
 
 }  // namespace

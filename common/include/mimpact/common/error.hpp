@@ -28,6 +28,13 @@ class BudgetSpent : public Error {
   double time_;
 };
 
+// A run stopped at the wall-clock time its caller allowed (--max-seconds, max_seconds=): not
+// a result, and not caught by a phase that would report a budget spent as a figure not made.
+class TimeLimitReached : public Error {
+ public:
+  using Error::Error;
+};
+
 // The shortest text that reads back as the same double: 1e-09, not 0.000000 or
 // 1.0000000000000001e-09.
 std::string to_text(double value);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 
 // Where a long run is: one line updated in place, as LAMMPS's thermo output or tqdm show it.
@@ -22,6 +23,9 @@ struct ProgressState {
 // after `delay` s and then one every `interval` s (one clock read when none is due), so that a
 // short run prints nothing. Each phase of a run (the LZB impact, its configuration check, the
 // compliant contacts) names itself and the simulated time it is to reach, when it knows it.
+// A meter also keeps the run's wall-clock limit (limit_time): the first report past it throws
+// TimeLimitReached, naming the phase, where it was and the option that raises the limit. A meter
+// with no sink shows nothing and only keeps the limit.
 class ProgressMeter {
  public:
   // Writes what it is given: a line kept in place ("\r", the line, spaces over the rest of the
@@ -32,9 +36,11 @@ class ProgressMeter {
   ProgressMeter& operator=(const ProgressMeter&) = delete;
   ~ProgressMeter();
 
+  // Stops the run `seconds` (wall-clock) after the meter was made; `option` raises the limit.
+  void limit_time(double seconds, std::string option);
   void begin(std::string phase, double end_time = std::numeric_limits<double>::quiet_NaN());
   void report(const ProgressState& state) {
-    if (std::chrono::steady_clock::now() >= next_) show(state);
+    if (std::chrono::steady_clock::now() >= next_) due(state);
   }
   // Closes the line, if one was shown.
   void finish();
@@ -43,11 +49,17 @@ class ProgressMeter {
   std::string line(const ProgressState& state, double elapsed) const;
 
  private:
-  void show(const ProgressState& state);
+  using Clock = std::chrono::steady_clock;
+  // Throws past the deadline; else shows the line if one is due, and sets the next report due.
+  void due(const ProgressState& state);
 
   Sink sink_;
-  std::chrono::steady_clock::duration interval_;
-  std::chrono::steady_clock::time_point start_, next_;
+  Clock::duration interval_;
+  Clock::time_point start_;
+  Clock::time_point next_line_ = Clock::time_point::max(), deadline_ = Clock::time_point::max();
+  Clock::time_point next_;  // the earlier of the two
+  double limit_seconds_ = std::numeric_limits<double>::infinity();
+  std::string limit_option_;
   std::string phase_ = "run";
   double end_time_ = std::numeric_limits<double>::quiet_NaN();
   std::size_t width_ = 0;  // of the line shown, 0 if none
@@ -55,5 +67,10 @@ class ProgressMeter {
 
 // A sink that writes to `stream` (a terminal) at once.
 ProgressMeter::Sink stream_sink(std::FILE* stream);
+
+// The meter of a run: showing on `sink` (nothing when it is empty) and stopping the run after
+// `seconds` (none when infinite), raised by `option`; null when it would do neither.
+std::unique_ptr<ProgressMeter> run_meter(ProgressMeter::Sink sink, double seconds,
+                                         const std::string& option);
 
 }  // namespace mimpact::granular

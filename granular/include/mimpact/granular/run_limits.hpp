@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "mimpact/granular/contact_model.hpp"
@@ -13,9 +14,12 @@ namespace mimpact::granular {
 struct RunLimits {
   double memory_gb = 4.0;                      // GB (1e9 bytes) a run may hold
   std::string memory_option = "--max-memory";  // what raises it: "max_memory=" in Python
+  // s of wall-clock time the run may take (infinite: no limit), kept by its ProgressMeter
+  double seconds = std::numeric_limits<double>::infinity();
+  std::string seconds_option = "--max-seconds";
 
   double memory_bytes() const { return memory_gb * 1e9; }
-  // Throws InvalidInput naming memory_option unless memory_gb is finite and > 0.
+  // Throws InvalidInput naming the option unless memory_gb is finite and > 0 and seconds > 0.
   void check() const;
 };
 
