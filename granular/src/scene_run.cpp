@@ -1,6 +1,7 @@
 #include "mimpact/granular/scene_run.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <utility>
@@ -26,13 +27,16 @@ class Observers : public numerics::ImpactObserver {
   void observe(const numerics::ImpactSample& sample) override {
     for (numerics::ImpactObserver* observer : observers_) observer->observe(sample);
   }
+  void progressed(const numerics::ImpactProgress& where) override {
+    for (numerics::ImpactObserver* observer : observers_) observer->progressed(where);
+  }
   bool empty() const { return observers_.empty(); }
 
  private:
   std::vector<numerics::ImpactObserver*> observers_;
 };
 
-// Hands the LZB samples to a progress meter.
+// Tells a progress meter where the LZB impact is.
 class ProgressObserver : public numerics::ImpactObserver {
  public:
   explicit ProgressObserver(ProgressMeter* meter) : meter_(meter) {}
@@ -40,16 +44,13 @@ class ProgressObserver : public numerics::ImpactObserver {
     meter_->report(
         {.time = sample.time, .steps = sample.step, .impulse = sample.principal_impulse});
   }
+  void progressed(const numerics::ImpactProgress& where) override {
+    meter_->report({.time = where.time, .steps = where.step, .impulse = where.principal_impulse});
+  }
 
  private:
   ProgressMeter* meter_;
 };
-
-// Where the run samples nothing for its record, it samples for its progress line: the impulse
-// steps every kProgressSteps steps, the adaptive integrator kProgressSamples times in the
-// shortest impact the model may have; one contact each (the samples change no step).
-constexpr std::int64_t kProgressSteps = 65'536;
-constexpr double kProgressSamples = 4.0;
 
 SceneRun run_lzb(const ContactModel& model,
                  std::shared_ptr<kernel::NonSmoothDynamicalSystem> system, const SceneRunSpec& spec,
@@ -64,11 +65,6 @@ SceneRun run_lzb(const ContactModel& model,
   if (record) {
     recorder.configure(impact);
     observers.add(&recorder);
-  } else if (options.progress) {
-    impact.impulse_steps.sample_every = kProgressSteps;
-    impact.impulse_steps.sampled_contacts = {0};
-    if (impact.adaptive.sample_interval == 0.0)
-      impact.adaptive.sample_interval = impact_duration_bound(model) / kProgressSamples;
   }
   ProgressObserver progress(options.progress);
   if (options.progress) {

@@ -335,6 +335,7 @@ void adaptive_lzb::Impact::run(const ImpactIntegrator::Input& input,
     ode_.step(rhs);
     ++steps_;
     contact_steps_ += std::int64_t(shared_.segment.active);
+    if (observer) observer->progressed({.step = steps_, .time = ode_.time()});
     const std::vector<Crossing> found = scan_events(
         {.start = step_start, .end = ode_.time(), .samples = kSamplesPerStep + 1},
         shared_.segment.before, shared_.segment.after,

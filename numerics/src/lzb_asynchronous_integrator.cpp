@@ -303,6 +303,8 @@ void LzbAsynchronousIntegrator::kicks(const Delassus& H, ImpactObserver* observe
     ++result.steps;
     if (observer && options().sample_every > 0 && result.steps % options().sample_every == 0)
       notify(observer, result.steps, time);
+    if (observer && result.steps % ImpactObserver::kProgressSteps == 0)
+      observer->progressed({.step = result.steps, .time = time, .principal_impulse = impulse_sum_});
   }
   if (observer) notify(observer, result.steps, time);
 

@@ -326,6 +326,8 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
     ++step;
     if (observer && options().sample_every > 0 && step % options().sample_every == 0)
       notify(observer, step, time, principal);
+    if (observer && step % ImpactObserver::kProgressSteps == 0)
+      observer->progressed({.step = step, .time = time, .principal_impulse = principal});
   }
   if (observer) notify(observer, step, time, principal);
 

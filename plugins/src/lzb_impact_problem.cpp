@@ -54,6 +54,7 @@ class InteractionSamples : public numerics::ImpactObserver {
     renamed.contacts = interactions_;
     next_.observe(renamed);
   }
+  void progressed(const numerics::ImpactProgress& where) override { next_.progressed(where); }
 
  private:
   std::span<const Index> closed_;

@@ -105,6 +105,38 @@ TYPED_TEST(ImpactIntegrators, MomentumIsConservedAndEnergyNeverGained) {
     }
 }
 
+// Where an integrator is reaches its observer whatever it samples (a progress meter's clock
+// and time limit): at every step of the adaptive integrator, whose steps may advance no sample
+// time, and every kProgressSteps steps of the impulse steps, in order.
+class ProgressCount : public ImpactObserver {
+ public:
+  void observe(const ImpactSample& /*sample*/) override {}
+  void progressed(const ImpactProgress& where) override {
+    ordered = ordered && where.step > last_step;
+    last_step = where.step;
+    ++calls;
+  }
+  std::int64_t calls = 0, last_step = 0;
+  bool ordered = true;
+};
+
+TYPED_TEST(ImpactIntegrators, WhereItIsReachesTheObserverWhateverItSamples) {
+  const ChainC1 chain;
+  const std::vector<ContactLaw> laws(chain.contacts(), ContactLaw{.stiffness = chain.stiffness});
+  const auto integrator =
+      TypeParam::make({.level = TypeParam::kFine, .natural_impulse = chain.mass});
+  ProgressCount progress;
+  const ImpactResult result =
+      integrator->integrate(chain.delassus(), chain.struck(), laws, &progress);
+  ASSERT_EQ(result.status, ImpactStatus::terminated);
+  const std::int64_t expected =
+      TypeParam::kStepsOfImpulse ? result.steps / ImpactObserver::kProgressSteps : result.steps;
+  EXPECT_GE(expected, 1) << result.steps << " steps";
+  EXPECT_EQ(progress.calls, expected);
+  EXPECT_TRUE(progress.ordered);
+  EXPECT_LE(progress.last_step, result.steps);
+}
+
 // H sparse, H dense and the Delassus object built from W and M^-1 give one impact, to the bit.
 TYPED_TEST(ImpactIntegrators, TheThreeFormsOfTheInputAreOneImpact) {
   const ChainC1 chain;

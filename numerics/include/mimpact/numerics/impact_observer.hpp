@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -27,11 +28,23 @@ struct ImpactSample {
   std::span<const double> tangential_impulse;
 };
 
-// Called at the first step, every `sample_every` steps and at the end of an impact.
+// Where an integrator is, whatever it samples: what a progress meter shows and its clock reads.
+struct ImpactProgress {
+  std::int64_t step = 0;
+  double time = 0.0;                                                    // s, from the first contact
+  double principal_impulse = std::numeric_limits<double>::quiet_NaN();  // N s, where it is kept
+};
+
+// observe: called at the first step, every `sample_every` steps and at the end of an impact.
+// progressed: every kProgressSteps steps of the impulse steps, every step of the adaptive
+// integrator (whose steps may advance no sample time), whatever is sampled; nothing by default.
 class ImpactObserver {
  public:
+  static constexpr std::int64_t kProgressSteps = 65'536;
+
   virtual ~ImpactObserver() = default;
   virtual void observe(const ImpactSample& sample) = 0;
+  virtual void progressed(const ImpactProgress& /*where*/) {}
 };
 
 // What an impact integrator hands its observer: the contacts sampled and their values at the
