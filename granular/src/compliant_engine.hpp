@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "mimpact/granular/contact_model.hpp"
+#include "mimpact/granular/impact_outcome.hpp"
 #include "mimpact/granular/moving_contacts_stats.hpp"
 #include "mimpact/granular/progress_meter.hpp"
 #include "mimpact/granular/scene_spec.hpp"
@@ -66,6 +67,8 @@ class CompliantEngine {
   virtual ImpactSpan impact_span() const = 0;
   virtual std::int64_t steps() const = 0;
   virtual double work_of_forces() const = 0;
+  // The contacts formed beyond the model's first `model_contacts` (none unless the bodies move).
+  virtual FormedContacts formed_contacts(Eigen::Index /*model_contacts*/) const { return {}; }
   virtual Eigen::Index most_bodies_in_motion() const = 0;
   virtual MovingContactsStats moving_stats() const { return {}; }
 };

@@ -170,6 +170,16 @@ class MovingEngine : public CompliantEngine {
   }
   std::int64_t steps() const override { return motion_.stats().steps; }
   double work_of_forces() const override { return 0.0; }
+  FormedContacts formed_contacts(Eigen::Index model_contacts) const override {
+    FormedContacts formed;
+    const std::vector<MovingContact>& contacts = motion_.contacts();
+    for (std::size_t id = std::size_t(model_contacts); id < contacts.size(); ++id) {
+      ++formed.count;
+      formed.dissipated += contacts[id].dissipated + contacts[id].slip_work;
+      formed.potential_left += contacts[id].stored_energy;
+    }
+    return formed;
+  }
   Eigen::Index most_bodies_in_motion() const override {
     return motion_.stats().most_bodies_in_motion;
   }

@@ -33,8 +33,9 @@ EnergyLedger energy_ledger(const ContactModel& model, const ImpactOutcome& impac
         impact.result.slip_work.size() == m ? impact.result.slip_work : Eigen::VectorXd::Zero(m);
     ledger.dissipated += ledger.slip;
   }
-  ledger.dissipated_total = ledger.dissipated.sum();
-  ledger.potential_left = stored_after.sum();
+  ledger.formed = impact.formed;
+  ledger.dissipated_total = ledger.dissipated.sum() + ledger.formed.dissipated;
+  ledger.potential_left = stored_after.sum() + ledger.formed.potential_left;
   return ledger;
 }
 
@@ -47,6 +48,10 @@ nlohmann::ordered_json ledger_json(const EnergyLedger& ledger) {
                               {"dissipated", std::vector<double>(d.data(), d.data() + d.size())},
                               {"dissipated_total", ledger.dissipated_total},
                               {"potential_left", ledger.potential_left}};
+  if (ledger.formed.count > 0)
+    json["formed_contacts"] = {{"count", ledger.formed.count},
+                               {"dissipated", ledger.formed.dissipated},
+                               {"potential_left", ledger.formed.potential_left}};
   if (ledger.slip.size() > 0 || ledger.rotational_before > 0.0) {  // the bodies turn
     const Eigen::VectorXd& slip = ledger.slip;
     json["rotational_before"] = ledger.rotational_before;

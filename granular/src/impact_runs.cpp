@@ -289,6 +289,7 @@ void assemble(const CompliantEngine& engine, const ContactModel& model, Complian
   result.steps = engine.steps();
   result.duration = span.end - span.start;
   impact.work_of_forces = engine.work_of_forces();
+  impact.formed = engine.formed_contacts(m);
   impact.cut_by_end_time = span.cut_by_end_time;
   const int d = model.dimension;
   impact.velocity_after.resize(model.mass.size());

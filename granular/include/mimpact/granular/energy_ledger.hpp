@@ -21,6 +21,8 @@ struct EnergyLedger {
   double work_of_forces = 0.0;    // done by the bodies' own forces (the precompression)
   // per contact: its work (normal and slip) + its potential energy before - after
   Eigen::VectorXd dissipated;
+  // the contacts the bodies formed as they moved, beyond the model's: in the two totals below
+  FormedContacts formed;
   double dissipated_total = 0.0;
   double potential_left = 0.0;  // held by the contacts at the end (LZB: below its tolerance)
   // the two sides' difference (J), round-off

@@ -12,6 +12,15 @@ namespace mimpact::granular {
 // shock crosses the touching beads; with strikers arriving at different times, one impact after
 // the other. Per-contact results are summed (impulses, steps) or taken at their peak over all
 // impacts, times counted from the first impact.
+// The contacts a run that moves the bodies formed beyond the model's (the moving geometry's
+// meetings): how many, what they dissipated (their turns' losses and slip work) and what they
+// hold at the end (J).
+struct FormedContacts {
+  Eigen::Index count = 0;
+  double dissipated = 0.0;
+  double potential_left = 0.0;
+};
+
 struct ImpactOutcome {
   // the impacts' result, aggregated, whichever method computed it (the LZB integrators or the
   // compliant contacts): per contact the impulse, peak force and its time, work and stored
@@ -32,6 +41,7 @@ struct ImpactOutcome {
   // energy at the start (a precompression's) and the work of the bodies' own forces
   Eigen::VectorXd stored_energy_at_start;
   double work_of_forces = 0.0;
+  FormedContacts formed;
   // per impact, in order: when it began (s) and the coordinates' velocities just before it
   std::vector<double> impact_times;
   std::vector<Eigen::VectorXd> velocities_before;
