@@ -1,6 +1,27 @@
 #include "mimpact/numerics/impact_observer.hpp"
 
+#include <limits>
+
 namespace mimpact::numerics {
+
+ObserverSchedule::ObserverSchedule(const ImpactObserver* observer, std::int64_t sample_every)
+    : sample_every_(sample_every > 0 ? sample_every : 0),
+      next_(observer ? next_of(0) : std::numeric_limits<std::int64_t>::max()) {}
+
+std::int64_t ObserverSchedule::next_of(std::int64_t step) const {
+  const std::int64_t progress =
+      step + (ImpactObserver::kProgressSteps - step % ImpactObserver::kProgressSteps);
+  if (sample_every_ == 0) return progress;
+  const std::int64_t left = sample_every_ - step % sample_every_;  // no overflow past the last
+  return left >= progress - step ? progress : step + left;
+}
+
+ObserverSchedule::Due ObserverSchedule::take(std::int64_t step) {
+  const Due due{.sample = sample_every_ > 0 && step % sample_every_ == 0,
+                .progress = step % ImpactObserver::kProgressSteps == 0};
+  next_ = next_of(step);
+  return due;
+}
 
 void ImpactSampler::reset(std::span<const Eigen::Index> contacts, std::size_t contact_count,
                           const TangentialRows* rows) {

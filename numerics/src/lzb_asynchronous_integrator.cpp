@@ -283,6 +283,7 @@ void LzbAsynchronousIntegrator::kicks(const Delassus& H, ImpactObserver* observe
 
   double time = 0.0;
   if (observer) notify(observer, 0, time);
+  ObserverSchedule schedule(observer, options().sample_every);
   while (!queue_.empty()) {
     std::pop_heap(queue_.begin(), queue_.end(), later);
     const Step step = queue_.back();
@@ -301,10 +302,13 @@ void LzbAsynchronousIntegrator::kicks(const Delassus& H, ImpactObserver* observe
     if (!std::isfinite(time)) break;
     kick(H, Index(step.contact), time);
     ++result.steps;
-    if (observer && options().sample_every > 0 && result.steps % options().sample_every == 0)
-      notify(observer, result.steps, time);
-    if (observer && result.steps % ImpactObserver::kProgressSteps == 0)
-      observer->progressed({.step = result.steps, .time = time, .principal_impulse = impulse_sum_});
+    if (schedule.due(result.steps)) {
+      const ObserverSchedule::Due due = schedule.take(result.steps);
+      if (due.sample) notify(observer, result.steps, time);
+      if (due.progress)
+        observer->progressed(
+            {.step = result.steps, .time = time, .principal_impulse = impulse_sum_});
+    }
   }
   if (observer) notify(observer, result.steps, time);
 

@@ -299,6 +299,7 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
   std::int64_t step = 0;
   double time = 0.0, principal = 0.0;
   if (observer) notify(observer, step, time, principal);
+  ObserverSchedule schedule(observer, options().sample_every);
   while (true) {
     select_participants(a, delta_p);
     if (a.active_count == 0) break;
@@ -324,10 +325,12 @@ void LzbImpulseIntegrator::step(const Delassus& H, const LawConstants* law,
                                   primary_force, law[primary].coefficient, law[primary].power);
     principal += a.step_impulse[primary];
     ++step;
-    if (observer && options().sample_every > 0 && step % options().sample_every == 0)
-      notify(observer, step, time, principal);
-    if (observer && step % ImpactObserver::kProgressSteps == 0)
-      observer->progressed({.step = step, .time = time, .principal_impulse = principal});
+    if (schedule.due(step)) {
+      const ObserverSchedule::Due due = schedule.take(step);
+      if (due.sample) notify(observer, step, time, principal);
+      if (due.progress)
+        observer->progressed({.step = step, .time = time, .principal_impulse = principal});
+    }
   }
   if (observer) notify(observer, step, time, principal);
 

@@ -47,6 +47,26 @@ class ImpactObserver {
   virtual void progressed(const ImpactProgress& /*where*/) {}
 };
 
+// When a loop of steps next tells its observer something: a sample every `sample_every` steps
+// (0: none), where it is every ImpactObserver::kProgressSteps; never without an observer. One
+// comparison a step, as the impulse steps' loops can afford.
+class ObserverSchedule {
+ public:
+  ObserverSchedule(const ImpactObserver* observer, std::int64_t sample_every);
+  bool due(std::int64_t step) const { return step == next_; }
+  // At a due step: whether it is a sample's, whether a progress report's; sets the next.
+  struct Due {
+    bool sample = false, progress = false;
+  };
+  Due take(std::int64_t step);
+
+ private:
+  std::int64_t next_of(std::int64_t step) const;
+
+  std::int64_t sample_every_;
+  std::int64_t next_;
+};
+
 // What an impact integrator hands its observer: the contacts sampled and their values at the
 // current sample, in buffers reused from one sample to the next.
 class ImpactSampler {
