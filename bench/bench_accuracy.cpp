@@ -7,7 +7,9 @@
 // their limit, the adaptive LZB at 1e-4 of the accuracy). Each time is the least of as many
 // repeats as fit in half a second.
 //
-// Counters: ratio (the run's time over the hindsight step's), ratio_to_estimated (over the
+// Counters: ratio (the run's wall-clock time over the hindsight step's; the run's companions
+// beside it on a second core, RunLimits::threads), cpu_ratio (the same with the processor time of
+// every thread), ratio_to_estimated (over the
 // hindsight step's run with its own error estimate, as a run of that step reports it by
 // default), runs (the answer's and its companions'), met (the estimate within the accuracy),
 // estimate and truth (worst body, of the striker's speed), step (the answer's delta_p in N s or
@@ -19,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <map>
 #include <string>
 #include <vector>
@@ -32,28 +35,37 @@ using namespace mimpact;
 using testing::CorpusCase;
 using testing::CorpusScene;
 
-// The ratios of each accuracy: to the hindsight step's bare run, and to its run with its estimate.
+// The ratios of each accuracy: to the hindsight step's bare run (wall-clock and processor time),
+// and to its run with its estimate.
 struct Ratios {
-  std::vector<double> bare, estimated;
+  std::vector<double> bare, cpu, estimated;
 };
 std::map<double, Ratios>& ratios() {
   static std::map<double, Ratios> by_accuracy;
   return by_accuracy;
 }
 
-// The least time (s) of `run` over as many repeats as fit in kRepeatSeconds (at least one).
+// Wall-clock and processor time (s, of every thread of the process).
+struct Seconds {
+  double wall = INFINITY, cpu = INFINITY;
+};
+
+// The least times of `run` over as many repeats as fit in kRepeatSeconds (at least one).
 constexpr double kRepeatSeconds = 0.5;
 template <class Run>
-double least_seconds(const Run& run) {
-  double least = INFINITY, spent = 0.0;
+Seconds least_seconds(const Run& run) {
+  Seconds least;
+  double spent = 0.0;
   do {
     const auto start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
     run();
+    const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    least = std::min(least, seconds);
+    least = {std::min(least.wall, seconds), std::min(least.cpu, cpu)};
     spent += seconds;
-  } while (spent + least < kRepeatSeconds);
+  } while (spent + least.wall < kRepeatSeconds);
   return least;
 }
 
@@ -90,8 +102,8 @@ nlohmann::json at_step(nlohmann::json scene, const std::string& field, double va
 }
 
 struct Hindsight {
-  double seconds = INFINITY;            // the fastest single step's that met the accuracy
-  double estimated_seconds = INFINITY;  // the same step's run with its error estimate
+  Seconds seconds;                      // the fastest single step's that met the accuracy
+  double estimated_seconds = INFINITY;  // the same step's run with its error estimate (wall)
   double step = 0.0;
 };
 
@@ -107,9 +119,10 @@ Hindsight hindsight(const CorpusScene& entry, const granular::AccuracyRun& chose
       granular::SceneRun run = single.run({.record = false});
       if (testing::error_against(model, run.impact.velocity_after, exact).worst > chosen.asked)
         continue;
-      return {least_seconds([&] { run = single.run({.record = false}); }),
-              least_seconds([&] { run = single.run({.record = false, .estimate_error = true}); }),
-              step};
+      return {
+          least_seconds([&] { run = single.run({.record = false}); }),
+          least_seconds([&] { run = single.run({.record = false, .estimate_error = true}); }).wall,
+          step};
     } catch (const InvalidInput&) {  // beyond the step's range, or its max_steps
     }
   }
@@ -119,12 +132,12 @@ Hindsight hindsight(const CorpusScene& entry, const granular::AccuracyRun& chose
 void accuracy_cost(benchmark::State& state, const CorpusScene* entry, double accuracy) {
   CorpusCase asked;
   granular::SceneRun run;
-  double seconds = 0.0;
+  Seconds seconds;
   try {
     asked = testing::prepare_corpus_scene(asking(entry->scene, accuracy), entry->name);
     for (auto _ : state) {
       seconds = least_seconds([&] { run = asked.run({.record = false}); });
-      state.SetIterationTime(seconds);
+      state.SetIterationTime(seconds.wall);
     }
   } catch (const InvalidInput& refused) {
     state.SkipWithError(refused.what());
@@ -136,13 +149,16 @@ void accuracy_cost(benchmark::State& state, const CorpusScene* entry, double acc
   const Eigen::VectorXd exact = testing::run_corpus_scene(reference, entry->name, {.record = false})
                                     .run.impact.velocity_after;
   const Hindsight best = hindsight(*entry, chosen, exact, *asked.model);
-  const double ratio = seconds / best.seconds;
-  const double to_estimated = seconds / best.estimated_seconds;
+  const double ratio = seconds.wall / best.seconds.wall;
+  const double cpu_ratio = seconds.cpu / best.seconds.cpu;
+  const double to_estimated = seconds.wall / best.estimated_seconds;
   if (std::isfinite(ratio)) {
     ratios()[accuracy].bare.push_back(ratio);
+    ratios()[accuracy].cpu.push_back(cpu_ratio);
     ratios()[accuracy].estimated.push_back(to_estimated);
   }
   state.counters["ratio"] = ratio;
+  state.counters["cpu_ratio"] = cpu_ratio;
   state.counters["ratio_to_estimated"] = to_estimated;
   state.counters["runs"] = chosen.runs;
   state.counters["met"] = chosen.met;
@@ -181,12 +197,17 @@ int main(int argc, char** argv) {
   Ratios all;
   for (const auto& [accuracy, values] : ratios()) {
     std::printf(
-        "median ratio at accuracy %.0e: %.3g (to the estimated run: %.3g) over %zu scenes\n",
-        accuracy, median(values.bare), median(values.estimated), values.bare.size());
+        "median ratio at accuracy %.0e: %.3g (processor time: %.3g; to the estimated run: %.3g) "
+        "over %zu scenes\n",
+        accuracy, median(values.bare), median(values.cpu), median(values.estimated),
+        values.bare.size());
     all.bare.insert(all.bare.end(), values.bare.begin(), values.bare.end());
+    all.cpu.insert(all.cpu.end(), values.cpu.begin(), values.cpu.end());
     all.estimated.insert(all.estimated.end(), values.estimated.begin(), values.estimated.end());
   }
-  std::printf("median ratio over all: %.3g (to the estimated run: %.3g) over %zu runs\n",
-              median(all.bare), median(all.estimated), all.bare.size());
+  std::printf(
+      "median ratio over all: %.3g (processor time: %.3g; to the estimated run: %.3g) over %zu "
+      "runs\n",
+      median(all.bare), median(all.cpu), median(all.estimated), all.bare.size());
   return 0;
 }

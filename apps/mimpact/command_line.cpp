@@ -35,12 +35,15 @@ std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet,
                              limits.seconds_option);
 }
 
-void add_time_limit_option(po::options_description& visible, granular::RunLimits& limits) {
+void add_run_limit_options(po::options_description& visible, granular::RunLimits& limits) {
   visible.add_options()(
       "max-seconds", po::value(&limits.seconds),
       "wall-clock seconds the run may take (its impact, checks and estimates; no limit by "
       "default): past them it stops with an error and writes nothing, as LAMMPS's `timer "
-      "timeout` does");
+      "timeout` does")(
+      "threads", po::value(&limits.threads),
+      "2 (the default): the error estimate's companion runs beside the run, on a second core; "
+      "1: after it");
 }
 
 void add_accuracy_options(boost::program_options::options_description& visible) {

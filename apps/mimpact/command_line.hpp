@@ -24,8 +24,9 @@ bool parse_command_line(const std::vector<std::string>& arguments,
 std::unique_ptr<granular::ProgressMeter> progress_line(bool quiet,
                                                        const granular::RunLimits& limits);
 
-// --max-seconds, into limits.seconds, of the chain and packing commands.
-void add_time_limit_option(boost::program_options::options_description& visible,
+// --max-seconds and --threads, into limits.seconds and limits.threads, of the chain and packing
+// commands.
+void add_run_limit_options(boost::program_options::options_description& visible,
                            granular::RunLimits& limits);
 
 // --accuracy and --no-error-estimate, of the chain and packing commands.

@@ -56,7 +56,7 @@ int packing_command(const std::vector<std::string>& arguments) {
       "GB the run may hold (the packing, its series and frames), 4 by default; a run that needs "
       "more is refused before it starts")("quiet", "no report on stderr");
   add_accuracy_options(visible);
-  add_time_limit_option(visible, limits);
+  add_run_limit_options(visible, limits);
   po::variables_map values;
   if (!parse_command_line(arguments, visible, "scene", scene_file, values)) return 0;
   const bool quiet = values.count("quiet") > 0;

@@ -127,8 +127,10 @@ Companion companion_at(const StepRule& rule, const StepOptions& options, double 
   const double ratio = value / rule.value;
   const double safety = ratio < 1.0 ? rule.finer_safety : rule.coarser_safety;
   const double scale = safety / std::abs(ratio - 1.0);
-  return {
-      .options = rule.at(options, value), .scale = scale, .method = said(rule.name, ratio, scale)};
+  return {.options = rule.at(options, value),
+          .scale = scale,
+          .method = said(rule.name, ratio, scale),
+          .finer = ratio < 1.0};
 }
 
 Companion companion_of(const StepRule& rule, const StepOptions& options) {

@@ -32,7 +32,7 @@ std::string count_text(std::int64_t n) {
 ProgressMeter::ProgressMeter(Sink sink, double delay, double interval)
     : sink_(std::move(sink)), interval_(seconds(interval)), start_(Clock::now()) {
   if (sink_) next_line_ = start_ + seconds(delay);
-  next_ = next_line_;
+  schedule(start_);
 }
 
 void ProgressMeter::limit_time(double limit, std::string option) {
@@ -40,7 +40,30 @@ void ProgressMeter::limit_time(double limit, std::string option) {
   limit_option_ = std::move(option);
   // beyond a year, no limit (and no overflow of the clock's ticks)
   if (std::isfinite(limit) && limit < 3.2e7) deadline_ = start_ + seconds(limit);
+  schedule(Clock::now());
+}
+
+std::unique_ptr<ProgressMeter> ProgressMeter::beside(const ProgressMeter* meter,
+                                                     std::stop_token stop) {
+  auto other = std::make_unique<ProgressMeter>(nullptr);
+  if (meter) {
+    other->start_ = meter->start_;
+    other->deadline_ = meter->deadline_;
+    other->limit_seconds_ = meter->limit_seconds_;
+    other->limit_option_ = meter->limit_option_;
+  }
+  other->stop_when(std::move(stop));
+  return other;
+}
+
+void ProgressMeter::stop_when(std::stop_token stop) {
+  stop_ = std::move(stop);
+  schedule(Clock::now());
+}
+
+void ProgressMeter::schedule(Clock::time_point now) {
   next_ = std::min(next_line_, deadline_);
+  if (stop_.stop_possible()) next_ = std::min(next_, now + seconds(kStopPoll));
 }
 
 ProgressMeter::~ProgressMeter() { finish(); }
@@ -52,6 +75,7 @@ void ProgressMeter::begin(std::string phase, double end_time) {
 
 void ProgressMeter::due(const ProgressState& state) {
   const Clock::time_point now = Clock::now();
+  if (stop_.stop_requested()) throw RunStopped();
   if (now >= deadline_) {
     finish();
     throw TimeLimitReached("the run took more than its " + rounded_text(limit_seconds_) + " s (" +
@@ -60,11 +84,11 @@ void ProgressMeter::due(const ProgressState& state) {
                            "; raise " + limit_option_ + ", or ask for a coarser step or accuracy");
   }
   if (now < next_line_) {
-    next_ = std::min(next_line_, deadline_);
+    schedule(now);
     return;
   }
   next_line_ = now + interval_;
-  next_ = std::min(next_line_, deadline_);
+  schedule(now);
   const std::string text = line(state, std::chrono::duration<double>(now - start_).count());
   const std::size_t pad = width_ > text.size() ? width_ - text.size() : 0;
   width_ = text.size();

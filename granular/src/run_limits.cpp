@@ -27,6 +27,10 @@ void RunLimits::check() const {
   if (!(seconds > 0.0))
     throw InvalidInput(
         invalid_value_message(seconds_option, seconds, "> 0 (s); default: no limit"));
+  if (threads != 1 && threads != 2)
+    throw InvalidInput(invalid_value_message(
+        threads_option, threads,
+        "1 (an error estimate's companion after the run) or 2 (beside it; the default)"));
 }
 
 double model_bytes(double bodies, double contacts, int dimension) {

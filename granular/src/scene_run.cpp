@@ -3,7 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <future>
 #include <limits>
+#include <stop_token>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -123,22 +127,36 @@ struct SceneRuns {
   bool record = false;  // the answer's run samples the scene's record
 
   // The scene's run at the step options `step`, by its method, sampling its record if
-  // `recorded` (the answer's run).
-  SceneRun at(const StepOptions& step, bool recorded) const {
-    SceneRun run =
-        spec.method == Method::lzb
-            ? run_lzb(model, build_system(), spec, options, step.impact, recorded)
-            : run_compliant(model, build_system(), spec, options, step.compliant, recorded);
+  // `recorded` (the answer's run), told to `meter`.
+  SceneRun at(const StepOptions& step, bool recorded, ProgressMeter* meter) const {
+    SceneRunOptions told = options;
+    told.progress = meter;
+    SceneRun run = spec.method == Method::lzb
+                       ? run_lzb(model, build_system(), spec, told, step.impact, recorded)
+                       : run_compliant(model, build_system(), spec, told, step.compliant, recorded);
     run.compliant = step.compliant;
     return run;
   }
+  SceneRun at(const StepOptions& step, bool recorded) const {
+    return at(step, recorded, options.progress);
+  }
   SceneRun at(const StepOptions& step) const { return at(step, record); }
+
+  // The answer's run at `step` (sampling the record if `recorded`) and its companion's: side by
+  // side when the limits allow two threads, else one after the other.
+  std::pair<SceneRun, SceneRun> with_companion(const StepOptions& step, bool recorded,
+                                               const Companion& companion) const {
+    if (options.limits.threads >= 2) return side_by_side(step, recorded, companion);
+    SceneRun run = at(step, recorded);
+    return {std::move(run), at(companion.options, false)};
+  }
+  std::pair<SceneRun, SceneRun> side_by_side(const StepOptions& step, bool recorded,
+                                             const Companion& companion) const;
 
   // The run at `step`, with its companion's estimate of its error.
   SceneRun estimated(const StepOptions& step) const {
-    SceneRun run = at(step);
     const Companion companion = companion_of(step_rule(model, spec.method, step), step);
-    const SceneRun other = at(companion.options, false);
+    auto [run, other] = with_companion(step, record, companion);
     run.error_estimate =
         estimate_error(model, run.impact.velocity_after, other.impact.velocity_after, companion);
     run.error_estimate->companion_seconds = other.impact.wall_time;
@@ -149,6 +167,58 @@ struct SceneRuns {
   SceneRun with_coarser_companions(StepOptions step, StepRule rule, double accuracy) const;
   SceneRun with_finer_companions(StepOptions step, StepRule rule, double accuracy) const;
 };
+
+// The finer of the two runs on this thread, told to the caller's meter (the progress line shows
+// the longer), the other on a second with a meter of its own (the same deadline, no line). As
+// one after the other, the answer's failure is raised first: it stops the companion; the
+// companion's failure is raised once the answer is done.
+std::pair<SceneRun, SceneRun> SceneRuns::side_by_side(const StepOptions& step, bool recorded,
+                                                      const Companion& companion) const {
+  const bool answer_here = !companion.finer;
+  std::stop_source stop_companion;
+  const std::unique_ptr<ProgressMeter> there_meter = ProgressMeter::beside(
+      options.progress, answer_here ? stop_companion.get_token() : std::stop_token());
+  std::unique_ptr<ProgressMeter> own;  // this thread's, where the caller gave none
+  ProgressMeter* here_meter = options.progress;
+  if (!answer_here && here_meter)
+    here_meter->stop_when(stop_companion.get_token());
+  else if (!answer_here)
+    here_meter = (own = ProgressMeter::beside(nullptr, stop_companion.get_token())).get();
+  auto answer = [&](ProgressMeter* meter) { return at(step, recorded, meter); };
+  auto other = [&](ProgressMeter* meter) { return at(companion.options, false, meter); };
+  std::future<SceneRun> beside = std::async(std::launch::async, [&] {
+    if (answer_here) return other(there_meter.get());
+    try {
+      return answer(there_meter.get());
+    } catch (...) {
+      stop_companion.request_stop();
+      throw;
+    }
+  });
+  if (answer_here) {
+    SceneRun run;
+    try {
+      run = answer(here_meter);
+    } catch (...) {
+      stop_companion.request_stop();
+      beside.wait();  // stopped, or done: not the caller's concern
+      throw;
+    }
+    return {std::move(run), beside.get()};
+  }
+  std::optional<SceneRun> finer;
+  std::exception_ptr failed;
+  try {
+    finer = other(here_meter);
+  } catch (const RunStopped&) {  // the answer failed: its failure is raised below
+  } catch (...) {
+    failed = std::current_exception();
+  }
+  if (options.progress) options.progress->stop_when({});
+  SceneRun run = beside.get();
+  if (failed) std::rethrow_exception(failed);
+  return {std::move(run), std::move(*finer)};
+}
 
 // Runs of the scene at finer and finer steps until one's estimate meets `accuracy`
 // (docs/design/error_estimates.md, "Accuracy"): the answer is the last; at most kMostRuns.
@@ -197,17 +267,24 @@ SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
 constexpr double kChainReach = 20.0;
 
 SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, double accuracy) const {
-  SceneRun run = at(step);
+  std::optional<SceneRun> run;  // the answer's, at `step`, once made
   bool recorded = record;
   double others = 0.0;  // s, of the runs that are not the answer
-  int runs = 1;
+  int runs = 0;
   ErrorEstimate estimate;
   while (true) {
     const Companion companion = companion_of(rule, step);
-    SceneRun finer = at(companion.options, false);
-    ++runs;
+    SceneRun finer;
+    if (run) {
+      finer = at(companion.options, false);
+      ++runs;
+    } else {
+      std::tie(run, finer) = with_companion(step, record, companion);
+      recorded = record;
+      runs += 2;
+    }
     estimate =
-        estimate_error(model, run.impact.velocity_after, finer.impact.velocity_after, companion);
+        estimate_error(model, run->impact.velocity_after, finer.impact.velocity_after, companion);
     const double finer_value = rule.value * rule.companion;  // the companion's, in range
     const bool chain = finer_value >= rule.finest && estimate.worst <= kChainReach * accuracy;
     if (estimate.worst <= accuracy || !std::isfinite(estimate.worst) || rule.value <= rule.finest ||
@@ -215,9 +292,9 @@ SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, doubl
       others += finer.impact.wall_time;
       break;
     }
-    others += run.impact.wall_time;
+    others += run->impact.wall_time;
     const double next =
-        chain ? finer_value : next_step(rule, estimate.worst, accuracy, run.impact.result.steps);
+        chain ? finer_value : next_step(rule, estimate.worst, accuracy, run->impact.result.steps);
     step = rule.at(step, next);
     rule.value = next;
     if (chain) {
@@ -225,22 +302,19 @@ SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, doubl
       recorded = false;
     } else {
       others += finer.impact.wall_time;
-      run = {};
-      run = at(step);
-      recorded = record;
-      ++runs;
+      run.reset();
     }
   }
   if (!recorded && record) {
-    others += run.impact.wall_time;
-    run = {};
+    others += run->impact.wall_time;
+    run.reset();
     run = at(step);
     ++runs;
   }
   estimate.companion_seconds = others;
-  run.error_estimate = estimate;
-  run.accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value};
-  return run;
+  run->error_estimate = estimate;
+  run->accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value};
+  return std::move(*run);
 }
 
 // The scene's run by spec.method, LZB or compliant.

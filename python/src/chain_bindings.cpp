@@ -52,9 +52,9 @@ void check_scene(const py::object& scene) { chains::build_chain_model(load_scene
 
 ChainResult run_chain(const py::object& scene_argument, std::optional<double> delta_p,
                       std::optional<double> accuracy, bool estimate_error, double max_memory,
-                      std::optional<double> max_seconds, bool progress) {
+                      std::optional<double> max_seconds, int threads, bool progress) {
   const chains::ChainScene scene = load_scene(scene_argument);
-  const granular::RunLimits limits = run_limits(max_memory, max_seconds);
+  const granular::RunLimits limits = run_limits(max_memory, max_seconds, threads);
   granular::SceneRun run;
   nlohmann::ordered_json summary;
   const std::unique_ptr<granular::ProgressMeter> meter = progress_meter(progress, limits);
@@ -198,19 +198,20 @@ void bind_chain_result(py::module_& module) {
 
 // The runs of a chain scene: run, read, check, converge.
 void bind_chain_runs(py::module_& module) {
-  module.def("run_chain", &run_chain, py::arg("scene"), py::kw_only(),
-             py::arg("delta_p") = py::none(), py::arg("accuracy") = py::none(),
-             py::arg("estimate_error") = true,
-             py::arg("max_memory") = granular::RunLimits{}.memory_gb,
-             py::arg("max_seconds") = py::none(), py::arg("progress") = false,
-             "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
-             "the method it chooses; delta_p (N s) overrides the scene's impulse step; accuracy "
-             "(a share of the fastest speed before the impact) overrides its step rule and its "
-             "accuracy: the run chooses its step to meet it; the result's error_estimate comes "
-             "from a companion run at another step, unless estimate_error=False; a run "
-             "that would hold more than max_memory GB is refused before it starts, one that "
-             "takes more than max_seconds s of wall-clock time raises RuntimeError; with "
-             "progress=True a run longer than 2 s shows where it is on sys.stderr.");
+  module.def(
+      "run_chain", &run_chain, py::arg("scene"), py::kw_only(), py::arg("delta_p") = py::none(),
+      py::arg("accuracy") = py::none(), py::arg("estimate_error") = true,
+      py::arg("max_memory") = granular::RunLimits{}.memory_gb, py::arg("max_seconds") = py::none(),
+      py::arg("threads") = granular::RunLimits{}.threads, py::arg("progress") = false,
+      "The impacts of a chain scene (a scene file's path or a dict with its keys), by "
+      "the method it chooses; delta_p (N s) overrides the scene's impulse step; accuracy "
+      "(a share of the fastest speed before the impact) overrides its step rule and its "
+      "accuracy: the run chooses its step to meet it; the result's error_estimate comes "
+      "from a companion run at another step, unless estimate_error=False; a run "
+      "that would hold more than max_memory GB is refused before it starts, one that "
+      "takes more than max_seconds s of wall-clock time raises RuntimeError; threads=2 (the "
+      "default) runs the estimate's companion beside the run, threads=1 after it; with "
+      "progress=True a run longer than 2 s shows where it is on sys.stderr.");
   module.def("read_scene", &read_scene, py::arg("path"),
              "a scene file (JSON, // comments allowed) as a dict, checked like run_chain()'s");
   module.def("check_scene", &check_scene, py::arg("scene"),

@@ -73,11 +73,11 @@ py::dict frames_dict(const granular::Frames& frames, Eigen::Index bodies, int di
 PackingResult run_packing(const py::object& scene_argument, std::optional<double> delta_p,
                           std::optional<double> accuracy, bool estimate_error,
                           const py::object& data_dir, double max_memory,
-                          std::optional<double> max_seconds, bool progress) {
+                          std::optional<double> max_seconds, int threads, bool progress) {
   packings::PackingScene scene = load_scene(scene_argument);
   if (!data_dir.is_none())
     scene.directory = py::module_::import("os").attr("fspath")(data_dir).cast<std::string>();
-  const granular::RunLimits limits = run_limits(max_memory, max_seconds);
+  const granular::RunLimits limits = run_limits(max_memory, max_seconds, threads);
   packings::PackingModel model;
   granular::SceneRun run;
   nlohmann::ordered_json summary;
@@ -155,13 +155,15 @@ void bind_packings(py::module_& module) {
              py::arg("delta_p") = py::none(), py::arg("accuracy") = py::none(),
              py::arg("estimate_error") = true, py::arg("data_dir") = py::none(),
              py::arg("max_memory") = granular::RunLimits{}.memory_gb,
-             py::arg("max_seconds") = py::none(), py::arg("progress") = false,
+             py::arg("max_seconds") = py::none(),
+             py::arg("threads") = granular::RunLimits{}.threads, py::arg("progress") = false,
              "Runs a packing scene (a path, or a dict with its keys) as `mimpact packing` "
              "does; delta_p (N s) overrides the scene's impulse step; accuracy overrides its "
              "step rule and its accuracy; error_estimate as run_chain(); bead lists are read only "
              "inside data_dir (by default the scene file's directory, or the working directory "
              "for a dict); a run that would hold more than max_memory GB is refused before it "
-             "starts, one past max_seconds s raises RuntimeError; with progress=True a run longer "
+             "starts, one past max_seconds s raises RuntimeError; threads as run_chain(); with "
+             "progress=True a run longer "
              "than 2 s shows where it is on sys.stderr.");
 }
 

@@ -7,10 +7,12 @@ namespace py = pybind11;
 
 namespace mimpact::python {
 
-granular::RunLimits run_limits(double max_memory, std::optional<double> max_seconds) {
+granular::RunLimits run_limits(double max_memory, std::optional<double> max_seconds, int threads) {
   granular::RunLimits limits{.memory_gb = max_memory, .memory_option = "max_memory="};
   if (max_seconds) limits.seconds = *max_seconds;
   limits.seconds_option = "max_seconds=";
+  limits.threads = threads;
+  limits.threads_option = "threads=";
   limits.check();
   return limits;
 }

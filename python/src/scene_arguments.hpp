@@ -31,8 +31,10 @@ auto load_scene_argument(const pybind11::object& scene, Read&& read, Load&& load
                      " is not allowed; allowed: a scene file's path or a dict with its keys");
 }
 
-// The limits of a run from Python's max_memory= (GB) and max_seconds= (None: no limit), checked.
-granular::RunLimits run_limits(double max_memory, std::optional<double> max_seconds);
+// The limits of a run from Python's max_memory= (GB), max_seconds= (None: no limit) and threads=,
+// checked.
+granular::RunLimits run_limits(double max_memory, std::optional<double> max_seconds,
+                               int threads = granular::RunLimits{}.threads);
 
 // The progress line of progress=True, on sys.stderr in place (the GIL taken for each write, so
 // that the run may release it); null for False.

@@ -351,3 +351,16 @@ def test_max_seconds_stops_a_long_run_and_writes_nothing(cli, tmp_path):
     for bad in (0.0, -1.0, math.nan):
         with pytest.raises(ValueError, match=r"max_seconds= = .* is invalid; allowed: > 0 \(s\)"):
             mimpact.run_packing(scene, max_seconds=bad)
+
+
+def test_threads_run_the_companion_beside_or_after_the_run():
+    """threads=2 (the default) runs the error estimate's companion beside the run, threads=1
+    after it: the same velocities and estimate to the last bit; any other count is refused."""
+    scene = square_on_a_wall([0.0, 1.0])
+    beside = mimpact.run_packing(scene, accuracy=1e-5)
+    after = mimpact.run_packing(scene, accuracy=1e-5, threads=1)
+    np.testing.assert_array_equal(beside.post_impact_velocities, after.post_impact_velocities)
+    assert beside.error_estimate["worst"] == after.error_estimate["worst"]
+    for bad in (0, 3):
+        with pytest.raises(ValueError, match=r"threads= = %d is invalid; allowed: 1 " % bad):
+            mimpact.run_packing(scene, threads=bad)

@@ -335,6 +335,29 @@ fs::path compliant_c1(const std::string& tag, const std::string& end_time) {
 
 // delta_p and the convergence study belong to the LZB method: asked of a compliant scene,
 // they are errors, not silently dropped.
+// --threads 1 runs the error estimate's companion after the run, 2 (the default) beside it: the
+// same summary but for the seconds; any other count is refused before the run.
+TEST(ChainCommand, ThreadsRunTheCompanionBesideOrAfterTheRun) {
+  auto without_seconds = [](const std::string& out) {
+    nlohmann::json summary = nlohmann::json::parse(out);
+    summary.erase("wall_time");
+    summary["error_estimate"].erase("companion_seconds");
+    return summary;
+  };
+  const CliRun beside = mimpact("chain " + scene("c1.json") + " --quiet --accuracy 1e-5");
+  const CliRun after =
+      mimpact("chain " + scene("c1.json") + " --quiet --accuracy 1e-5 --threads 1");
+  ASSERT_EQ(beside.exit_code, 0) << beside.err;
+  ASSERT_EQ(after.exit_code, 0) << after.err;
+  EXPECT_EQ(without_seconds(beside.out), without_seconds(after.out));
+  const CliRun three = mimpact("chain " + scene("c1.json") + " --threads 3");
+  EXPECT_EQ(three.exit_code, 1);
+  EXPECT_NE(three.err.find("--threads = 3 is invalid; allowed: 1 (an error estimate's companion "
+                           "after the run) or 2 (beside it; the default)"),
+            std::string::npos)
+      << three.err;
+}
+
 TEST(ChainCommand, LzbOptionsOnACompliantSceneAreErrors) {
   const fs::path file = compliant_c1("compliant", "");
   const CliRun delta_p = mimpact("chain " + file.string() + " --delta-p 1e-5");

@@ -134,6 +134,47 @@ TEST(ErrorEstimate, AFinerCompanionHasTheStepsItNeeds) {
   }
 }
 
+// Beside its run on a second thread or after it (RunLimits::threads), a companion gives the same
+// answer and the same estimate, to the last bit, by each method and asked for an accuracy.
+TEST(ErrorEstimate, BesideTheRunOrAfterItTheSameEstimate) {
+  for (const char* how : {R"("impact": {"delta_p": 1e-5})",
+                          R"("impact": {"integrator": "adaptive", "tolerance": 1e-6})",
+                          R"("method": "compliant", "compliant": {"tolerance": 1e-6})",
+                          R"("method": "compliant", "accuracy": 1e-6)",
+                          R"("impact": {"integrator": "impulse-step"}, "accuracy": 1e-4)"}) {
+    const chains::ChainScene scene = c1(0.9, how);
+    const chains::ChainModel model = chains::build_chain_model(scene);
+    granular::SceneRun runs[2];
+    for (int threads : {1, 2})
+      runs[threads - 1] = chains::run_chain_scene(
+          scene, model, {.limits = {.threads = threads}, .estimate_error = true});
+    ASSERT_TRUE(runs[0].error_estimate && runs[1].error_estimate) << how;
+    EXPECT_EQ(runs[0].impact.velocity_after, runs[1].impact.velocity_after) << how;
+    EXPECT_EQ(runs[0].error_estimate->worst, runs[1].error_estimate->worst) << how;
+    EXPECT_EQ(runs[0].error_estimate->rms, runs[1].error_estimate->rms) << how;
+    EXPECT_EQ(runs[0].accuracy.has_value(), runs[1].accuracy.has_value()) << how;
+    if (runs[0].accuracy) {
+      EXPECT_EQ(runs[0].accuracy->runs, runs[1].accuracy->runs) << how;
+    }
+  }
+}
+
+// A run that fails beside its companion raises its own failure: C1 by the compliant contacts
+// with one step fewer than it needs, its companion allowed four times as many.
+TEST(ErrorEstimate, ARunsOwnFailureIsRaisedBesideItsCompanion) {
+  chains::ChainScene scene = c1(0.9, R"("method": "compliant", "compliant": {"tolerance": 1e-6})");
+  const chains::ChainModel model = chains::build_chain_model(scene);
+  scene.compliant.max_steps = least_budget(scene, model) - 1;
+  try {
+    chains::run_chain_scene(scene, model, {.limits = {.threads = 2}, .estimate_error = true});
+    ADD_FAILURE() << "a run short of its steps ran";
+  } catch (const Error& failed) {
+    EXPECT_NE(std::string(failed.what()).find(std::to_string(scene.compliant.max_steps)),
+              std::string::npos)
+        << failed.what();
+  }
+}
+
 // The worst body's true error of a run asked for `accuracy` (the scene's "accuracy"), against
 // the same method at a step 1 000 times finer than the one the run chose.
 double worst_true_error(const std::string& how, double accuracy, const char* step_field) {

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <limits>
+#include <stop_token>
 #include <string>
 #include <thread>
 #include <vector>
@@ -94,6 +95,41 @@ TEST(ProgressMeter, ARunWithNeitherLineNorLimitHasNoMeter) {
   ASSERT_NE(shown, nullptr);
   shown->report({.time = 0.0, .steps = 1});  // a second before the first line: nothing
   EXPECT_TRUE(written.empty());
+}
+
+// A meter beside another (an error estimate's companion on a second thread) shows no line, keeps
+// the other's deadline, and stops its run at a report after its stop is asked, never before.
+TEST(ProgressMeter, AMeterBesideAnotherKeepsItsDeadlineAndStopsWhenAsked) {
+  std::vector<std::string> written;
+  ProgressMeter shown([&](const std::string& text) { written.push_back(text); }, 0.0, 0.0);
+  shown.limit_time(0.05, "--max-seconds");
+  const std::unique_ptr<ProgressMeter> beside = ProgressMeter::beside(&shown, {});
+  beside->begin("compliant contacts");
+  std::string message;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    for (std::int64_t k = 0; k < std::int64_t(1) << 40; ++k) beside->report({.steps = k});
+  } catch (const TimeLimitReached& stopped) {
+    message = stopped.what();
+  }
+  EXPECT_GE(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.05);
+  EXPECT_NE(message.find("more than its 0.05 s (--max-seconds): stopped in the compliant contacts"),
+            std::string::npos)
+      << message;
+  EXPECT_TRUE(written.empty());
+
+  std::stop_source stop;
+  const std::unique_ptr<ProgressMeter> unlimited = ProgressMeter::beside(nullptr, stop.get_token());
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(60);
+  std::int64_t reports = 0;
+  while (std::chrono::steady_clock::now() < until) unlimited->report({.steps = ++reports});
+  stop.request_stop();
+  std::int64_t after = 0;
+  EXPECT_THROW(
+      while (after < std::int64_t(1) << 40) unlimited->report({.steps = reports + ++after}),
+      RunStopped);
+  EXPECT_GT(reports, 1000);  // three polls and more went by without a stop
+  EXPECT_GE(after, 1);
 }
 
 }  // namespace

@@ -59,6 +59,7 @@ struct Companion {
   StepOptions options;
   double scale = 1.0;  // error = scale x |v - v_companion|, per body
   std::string method;
+  bool finer = false;  // its step is finer than the run's: it takes the longer
 };
 
 // The companion of a run at `rule.value` from a run at `value`: scale safety / |r - 1| with

@@ -6,6 +6,8 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <stop_token>
 #include <string>
 
 // Where a long run is: one line updated in place, as LAMMPS's thermo output or tqdm show it.
@@ -17,6 +19,13 @@ struct ProgressState {
   std::int64_t steps = 0;
   std::int64_t contacts = -1;  // contacts loaded or in motion; < 0: not known
   double impulse = std::numeric_limits<double>::quiet_NaN();  // N s, LZB's principal impulse
+};
+
+// Thrown by a meter beside another (ProgressMeter::beside) at its first report after its stop
+// was asked: the run it measures is no longer wanted. It never leaves run_scene.
+class RunStopped : public std::runtime_error {
+ public:
+  RunStopped() : std::runtime_error("the run beside this one stopped it") {}
 };
 
 // Throttled by the clock: a loop reports as often as it likes, and its sink gets the first line
@@ -38,6 +47,13 @@ class ProgressMeter {
 
   // Stops the run `seconds` (wall-clock) after the meter was made; `option` raises the limit.
   void limit_time(double seconds, std::string option);
+  // From now on, a RunStopped at the first report after `stop` is asked (the reports are looked
+  // at every kStopPoll s for it); an empty token undoes it.
+  void stop_when(std::stop_token stop);
+  static constexpr double kStopPoll = 0.02;  // s
+  // A meter for a run on another thread beside the one `meter` measures (none: no limit): no
+  // line, the same deadline, and stopped when `stop` is asked.
+  static std::unique_ptr<ProgressMeter> beside(const ProgressMeter* meter, std::stop_token stop);
   void begin(std::string phase, double end_time = std::numeric_limits<double>::quiet_NaN());
   void report(const ProgressState& state) {
     if (std::chrono::steady_clock::now() >= next_) due(state);
@@ -52,6 +68,8 @@ class ProgressMeter {
   using Clock = std::chrono::steady_clock;
   // Throws past the deadline; else shows the line if one is due, and sets the next report due.
   void due(const ProgressState& state);
+  // The next report looked at: the next line, the deadline or the next look at the stop.
+  void schedule(Clock::time_point now);
 
   Sink sink_;
   Clock::duration interval_;
@@ -63,6 +81,7 @@ class ProgressMeter {
   std::string phase_ = "run";
   double end_time_ = std::numeric_limits<double>::quiet_NaN();
   std::size_t width_ = 0;  // of the line shown, 0 if none
+  std::stop_token stop_;   // beside(): asked to stop
 };
 
 // A sink that writes to `stream` (a terminal) at once.

@@ -17,9 +17,14 @@ struct RunLimits {
   // s of wall-clock time the run may take (infinite: no limit), kept by its ProgressMeter
   double seconds = std::numeric_limits<double>::infinity();
   std::string seconds_option = "--max-seconds";
+  // threads a run may use: 2 runs an error estimate's companion beside the run it estimates
+  // (the finer of the two on the caller's thread), 1 one after the other
+  int threads = 2;
+  std::string threads_option = "--threads";
 
   double memory_bytes() const { return memory_gb * 1e9; }
-  // Throws InvalidInput naming the option unless memory_gb is finite and > 0 and seconds > 0.
+  // Throws InvalidInput naming the option unless memory_gb is finite and > 0, seconds > 0 and
+  // threads is 1 or 2.
   void check() const;
 };
 
