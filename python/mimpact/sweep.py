@@ -50,8 +50,9 @@ def _plain(value):
 
 def _run(scene):
     """run_chain() as a Python function: pickled by reference for Dask's workers, which import
-    mimpact themselves (a compiled function cannot be pickled)."""
-    return run_chain(scene)
+    mimpact themselves (a compiled function cannot be pickled). One thread a point: the sweep
+    fills the cores with points, so each run's error estimate follows it rather than beside."""
+    return run_chain(scene, threads=1)
 
 
 def run_many(scenes, client=None, workers=None):
