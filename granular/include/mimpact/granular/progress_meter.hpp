@@ -81,7 +81,7 @@ class ProgressMeter {
   std::string phase_ = "run";
   double end_time_ = std::numeric_limits<double>::quiet_NaN();
   std::size_t width_ = 0;  // of the line shown, 0 if none
-  std::stop_token stop_;   // beside(): asked to stop
+  std::stop_token stop_;   // stop_when(): asked to stop
 };
 
 // A sink that writes to `stream` (a terminal) at once.
