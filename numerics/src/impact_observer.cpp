@@ -8,11 +8,14 @@ ObserverSchedule::ObserverSchedule(const ImpactObserver* observer, std::int64_t 
     : sample_every_(sample_every > 0 ? sample_every : 0),
       next_(observer ? next_of(0) : std::numeric_limits<std::int64_t>::max()) {}
 
+// The first step after `step` that is a progress report's or a sample's: the nearer of the two,
+// each found as its gap from `step`, so that a sampling period near the largest count of steps
+// does not overflow.
 std::int64_t ObserverSchedule::next_of(std::int64_t step) const {
   const std::int64_t progress =
       step + (ImpactObserver::kProgressSteps - step % ImpactObserver::kProgressSteps);
   if (sample_every_ == 0) return progress;
-  const std::int64_t left = sample_every_ - step % sample_every_;  // no overflow past the last
+  const std::int64_t left = sample_every_ - step % sample_every_;
   return left >= progress - step ? progress : step + left;
 }
 
