@@ -261,10 +261,11 @@ SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
 }
 
 // A tolerance: the run and its finer companion; while the estimate is above the accuracy, the
-// companion becomes the run where the estimate is within kChainReach of the accuracy, else a run
-// starts at the step the estimate predicts. Companions sample no record: an answer that was one
-// runs again to sample it (beyond kMostRuns).
-constexpr double kChainReach = 20.0;
+// companion becomes the run where the estimate is within kChainReach of the accuracy (the
+// companion's own error about the estimate x its ratio of the step, 0.2), else a new pair starts
+// at the step the estimate predicts. Companions sample no record: an answer that was one runs
+// again to sample it (beyond kMostRuns).
+constexpr double kChainReach = 6.0;
 
 SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, double accuracy) const {
   std::optional<SceneRun> run;  // the answer's, at `step`, once made

@@ -14,8 +14,8 @@
 // step (docs/design/error_estimates.md): the impulse steps are first order in delta_p, so that
 // error(k) ~ |v(k) - v(2 k)| (Richardson); the adaptive LZB's and the compliant method's global
 // error follows their tolerance too loosely for a coarser run to tell it, so their companion
-// runs at a tenth of it, nearly the exact answer: error(k) ~ |v(k) - v(k / 10)|. Each times a
-// safety factor that the measured ratios call for.
+// runs at a fifth of it, whose error is a fifth to a half of the run's: error(k) ~
+// |v(k) - v(k / 5)| / 0.8. Each times a safety factor that the measured ratios call for.
 namespace mimpact::granular {
 
 struct ErrorEstimate {
@@ -44,7 +44,7 @@ struct StepRule {
   // error(k) = safety |v(k) - v(r k)| / |r - 1|, for a finer companion (r < 1) and a coarser
   double finer_safety = 1.0;
   double coarser_safety = 1.0;
-  double companion = 1.0;  // r of a run's companion (2 or 0.1), where the range allows
+  double companion = 1.0;  // r of a run's companion (2 or 0.2), where the range allows
   std::string name;        // "delta_p", "tolerance"
 
   // `options` with k = value.
@@ -66,8 +66,8 @@ struct Companion {
 // r = value / rule.value.
 Companion companion_at(const StepRule& rule, const StepOptions& options, double value);
 // The run's own companion: r = rule.companion, twice delta_p (or half, where twice leaves its
-// range: then with twice the steps allowed); a tenth of the tolerance (or ten times it, where a
-// tenth leaves its range).
+// range: then with twice the steps allowed); a fifth of the tolerance (or five times it, where a
+// fifth leaves its range).
 Companion companion_of(const StepRule& rule, const StepOptions& options);
 
 // The estimate from the run's and its companion's velocities (per coordinate, as
@@ -85,7 +85,8 @@ struct AccuracyRun {
 };
 
 // The step options of a first run asked for `accuracy` (docs/design/error_estimates.md,
-// "Accuracy"): a tolerance of the accuracy (ten times it in the moving geometry); delta_p of
+// "Accuracy"): a tolerance of the accuracy (ten times it in the moving geometry, and the
+// accuracy x 100 / bodies on a chain longer than 100 bodies); delta_p of
 // kFirstDeltaP x the accuracy's share of the striker's momentum, coarse, so that its pair
 // predicts the step at little cost.
 StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
