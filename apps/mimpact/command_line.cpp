@@ -54,7 +54,7 @@ void add_accuracy_options(boost::program_options::options_description& visible) 
       "estimate meets it; overrides the scene's accuracy, delta_p and tolerance")(
       "no-error-estimate",
       "skip the companion run that estimates the answer's error (it costs 0.3 to 0.6 x the run "
-      "for delta_p, 0.9 to 2 x for a tolerance; a run asked for an accuracy makes it all the "
+      "for delta_p, 1.0 to 1.6 x for a tolerance; a run asked for an accuracy makes it all the "
       "same)");
 }
 

@@ -45,6 +45,10 @@ constexpr double kCoarsestFirstDeltaP = 1e-2;
 // closely; a tolerance's error is proportional within a factor of about 3.
 constexpr double kDeltaPAim = 0.8;
 constexpr double kToleranceAim = 0.5;
+// The least order a refinement takes from two runs' estimates: where the error hardly fell (the
+// velocities at end_time through many collisions, docs/design/error_estimates.md, "Accuracy"),
+// the next run goes as far again as the error is off squared.
+constexpr double kLeastOrder = 0.5;
 
 std::string said(const std::string& what, double ratio, double scale) {
   char text[160];
@@ -180,10 +184,18 @@ StepOptions first_step(const ContactModel& model, Method method, const StepOptio
   return rule.at(first, std::clamp(rule.value, rule.finest, rule.loosest));
 }
 
-double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps) {
+double observed_order(double step_before, double estimate_before, double step, double estimate) {
+  const double order = std::log(estimate_before / estimate) / std::log(step_before / step);
+  return std::isfinite(order) ? std::clamp(order, kLeastOrder, 1.0) : kLeastOrder;
+}
+
+double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps,
+                 double order) {
   const bool tolerance = rule.kind == StepRule::Kind::lzb_tolerance ||
                          rule.kind == StepRule::Kind::compliant_tolerance;
-  double aimed = rule.value * (accuracy / estimate) * (tolerance ? kToleranceAim : kDeltaPAim);
+  double aimed =
+      rule.value *
+      std::pow((accuracy / estimate) * (tolerance ? kToleranceAim : kDeltaPAim), 1.0 / order);
   // a coarser companion is the run before: at least that much coarser
   if (rule.companion > 1.0) aimed = std::min(aimed, rule.value / rule.companion);
   if (tolerance) return std::max(rule.finest, aimed);

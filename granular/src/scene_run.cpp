@@ -6,6 +6,7 @@
 #include <exception>
 #include <future>
 #include <limits>
+#include <optional>
 #include <stop_token>
 #include <tuple>
 #include <utility>
@@ -263,8 +264,8 @@ SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
 // A tolerance: the run and its finer companion; while the estimate is above the accuracy, the
 // companion becomes the run where the estimate is within kChainReach of the accuracy (the
 // companion's own error about the estimate x its ratio of the step, 0.2), else a new pair starts
-// at the step the estimate predicts. Companions sample no record: an answer that was one runs
-// again to sample it (beyond kMostRuns).
+// at the step the estimate predicts, with the order observed from the run before. Companions sample
+// no record: an answer that was one runs again to sample it (beyond kMostRuns).
 constexpr double kChainReach = 6.0;
 
 SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, double accuracy) const {
@@ -273,6 +274,7 @@ SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, doubl
   double others = 0.0;  // s, of the runs that are not the answer
   int runs = 0;
   ErrorEstimate estimate;
+  std::optional<std::pair<double, double>> pair_before;  // its step and estimate
   while (true) {
     const Companion companion = companion_of(rule, step);
     SceneRun finer;
@@ -294,8 +296,13 @@ SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, doubl
       break;
     }
     others += run->impact.wall_time;
+    const double order = pair_before ? observed_order(pair_before->first, pair_before->second,
+                                                      rule.value, estimate.worst)
+                                     : 1.0;
     const double next =
-        chain ? finer_value : next_step(rule, estimate.worst, accuracy, run->impact.result.steps);
+        chain ? finer_value
+              : next_step(rule, estimate.worst, accuracy, run->impact.result.steps, order);
+    pair_before = {rule.value, estimate.worst};
     step = rule.at(step, next);
     rule.value = next;
     if (chain) {

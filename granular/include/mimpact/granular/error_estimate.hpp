@@ -91,12 +91,16 @@ struct AccuracyRun {
 // predicts the step at little cost.
 StepOptions first_step(const ContactModel& model, Method method, const StepOptions& options,
                        double accuracy);
+// The order q of the error in the step (error ~ k^q) between two runs' estimates, within
+// [0.5, 1]: 0.5 where the error did not fall (docs/design/error_estimates.md, "Accuracy").
+double observed_order(double step_before, double estimate_before, double step, double estimate);
 // The next k of a run whose estimate at rule.value was `estimate` (> accuracy) in `steps`: the
-// error taken proportional to k, aimed below the accuracy, at least rule.companion times finer
-// where the companion is coarser (the run before is the next one's), a tolerance at least
+// error taken as k^order, aimed below the accuracy, at least rule.companion times finer where
+// the companion is coarser (the run before is the next one's), a tolerance at least
 // rule.finest. Throws InvalidInput, naming the accuracy, for an impulse
 // step whose steps (as 1 / delta_p) would pass impact.max_steps.
-double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps);
+double next_step(const StepRule& rule, double estimate, double accuracy, std::int64_t steps,
+                 double order = 1.0);
 
 // summary.json's "accuracy": {"asked", "met", "runs", and the step rule's field}.
 nlohmann::ordered_json accuracy_json(const AccuracyRun& accuracy);
