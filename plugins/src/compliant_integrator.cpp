@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "compliant_state.hpp"
 #include "mimpact/common/error.hpp"
@@ -39,6 +40,20 @@ Index CompliantIntegrator::bodies_in_motion() const { return Index(state_->motio
 Index CompliantIntegrator::most_bodies_in_motion() const { return state_->motion.most_moving; }
 
 namespace {
+
+// Units in the last place of the largest coordinate of a contact's bodies within which a gap
+// computed from their positions is round-off.
+constexpr double kGapRoundOff = 4.0;
+
+// The round-off of contact j's gap at positions q (m).
+double gap_round_off(const kernel::NonSmoothDynamicalSystem& system, const VectorXd& q, Index j) {
+  double largest = 0.0;
+  for (Index k : {system.first_system(j), system.second_system(j)})
+    if (k >= 0)
+      largest = std::max(
+          largest, q.segment(system.offset(k), system.system(k).dimension()).cwiseAbs().maxCoeff());
+  return kGapRoundOff * std::numeric_limits<double>::epsilon() * largest;
+}
 
 std::vector<numerics::ContactLaw> compliant_laws(const kernel::NonSmoothDynamicalSystem& system) {
   std::vector<numerics::ContactLaw> laws;
@@ -111,9 +126,12 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
                                s.local_of_coordinate[std::size_t(coordinate)], value});
       });
   }
-  // a contact that starts compressed (a static load) starts on its loading curve
+  // a contact that starts compressed (a static load) starts on its loading curve; an overlap
+  // within the round-off of the positions its gap is computed from is a touch: a 100 000-bead
+  // chain placed end to end, 2 km long, starts with overlaps of up to 1.8e-14 m at 93 597 of its
+  // contacts, which joined at tolerances of 2e-13 and below and set the whole chain in motion
   for (Index j = 0; j < m; ++j)
-    if (-s.contact(j).anchor_gap > s.join_overlap) {
+    if (-s.contact(j).anchor_gap > std::max(s.join_overlap, gap_round_off(system, s.anchor_q, j))) {
       join(j);
       max_compression_[std::size_t(j)] = -s.contact(j).anchor_gap;
       history_.force(j) = history_.max_force(j) =
