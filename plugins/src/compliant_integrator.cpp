@@ -127,9 +127,8 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
       });
   }
   // a contact that starts compressed (a static load) starts on its loading curve; an overlap
-  // within the round-off of the positions its gap is computed from is a touch: a 100 000-bead
-  // chain placed end to end, 2 km long, starts with overlaps of up to 1.8e-14 m at 93 597 of its
-  // contacts, which joined at tolerances of 2e-13 and below and set the whole chain in motion
+  // within the round-off of the positions its gap is computed from is a touch, else a long chain
+  // placed end to end starts loaded at fine tolerances (docs/design/compliant_contacts.md)
   for (Index j = 0; j < m; ++j)
     if (-s.contact(j).anchor_gap > std::max(s.join_overlap, gap_round_off(system, s.anchor_q, j))) {
       join(j);
