@@ -206,10 +206,12 @@ double next_step(const StepRule& rule, double estimate, double accuracy, std::in
 }
 
 nlohmann::ordered_json accuracy_json(const AccuracyRun& accuracy) {
-  return {{"asked", accuracy.asked},
-          {"met", accuracy.met},
-          {"runs", accuracy.runs},
-          {accuracy.step, accuracy.value}};
+  return {
+      {"asked", accuracy.asked},
+      {"met", accuracy.met},
+      {"runs", accuracy.runs},
+      {accuracy.step, accuracy.value},
+      {"ended", accuracy.met ? nlohmann::ordered_json() : nlohmann::ordered_json(accuracy.ended)}};
 }
 
 ErrorEstimate estimate_error(const ContactModel& model, const Eigen::VectorXd& velocity,

@@ -8,10 +8,12 @@
 #include <limits>
 #include <optional>
 #include <stop_token>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "mimpact/common/error.hpp"
 #include "mimpact/granular/error_estimate.hpp"
 #include "mimpact/granular/impact_recorder.hpp"
 
@@ -119,6 +121,29 @@ SceneRun run_compliant(const ContactModel& model,
   return run;
 }
 
+// An LZB run stopped at its step limit (impact.max_steps) has no answer: within an accuracy's
+// runs it spent its budget, as a compliant run past compliant.max_steps does.
+void require_answer(const SceneRun& run) {
+  if (run.impact.result.status == numerics::ImpactStatus::step_limit)
+    throw BudgetSpent(run.impact.result.message, run.impact.result.duration);
+}
+
+// An accuracy's answer with its estimate, held while a finer run goes on: the answer again where
+// that run spends its budget. Its record is not held beside the finer runs': it is sampled again.
+struct HeldAnswer {
+  HeldAnswer(SceneRun answer, const StepOptions& ran_with, const ErrorEstimate& its_estimate,
+             double step_value)
+      : run(std::move(answer)), options(ran_with), estimate(its_estimate), value(step_value) {
+    run.series = {};
+    run.frames = {};
+    run.recorded = false;
+  }
+  SceneRun run;
+  StepOptions options;  // as it ran
+  ErrorEstimate estimate;
+  double value;  // its step rule's
+};
+
 // What every run of a scene shares: the model, its systems, the spec and the caller's options.
 struct SceneRuns {
   const ContactModel& model;
@@ -158,6 +183,7 @@ struct SceneRuns {
   SceneRun estimated(const StepOptions& step) const {
     const Companion companion = companion_of(step_rule(model, spec.method, step), step);
     auto [run, other] = with_companion(step, record, companion);
+    require_answer(other);
     run.error_estimate =
         estimate_error(model, run.impact.velocity_after, other.impact.velocity_after, companion);
     run.error_estimate->companion_seconds = other.impact.wall_time;
@@ -235,14 +261,25 @@ SceneRun SceneRuns::to_accuracy(StepOptions step, double accuracy) const {
   return run;
 }
 
+// Why an accuracy's runs end with the estimate above it ("" where they go on): the estimate is
+// not finite, the step is at its finest, or the next run would pass kMostRuns.
+std::string why_ended(double estimate, const StepRule& rule, bool runs_left) {
+  if (!std::isfinite(estimate)) return "the estimate is not finite";
+  if (rule.value <= rule.finest) return "the step's range ended, at its finest";
+  if (!runs_left) return "the most runs, " + std::to_string(kMostRuns) + ", ended first";
+  return "";
+}
+
 // delta_p: each run is the coarser companion of the next.
 SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
                                             double accuracy) const {
   SceneRun run = estimated(step);
+  require_answer(run);
   ErrorEstimate estimate = *run.error_estimate;
   int runs = 2;
-  while (estimate.worst > accuracy && std::isfinite(estimate.worst) && rule.value > rule.finest &&
-         runs < kMostRuns) {
+  std::string ended;
+  while (estimate.worst > accuracy &&
+         (ended = why_ended(estimate.worst, rule, runs + 1 <= kMostRuns)).empty()) {
     StepRule finer = rule;
     finer.value = next_step(rule, estimate.worst, accuracy, run.impact.result.steps);
     step = finer.at(step, finer.value);
@@ -250,6 +287,7 @@ SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
     const Eigen::VectorXd previous = std::move(run.impact.velocity_after);
     run = {};  // its recording is not held beside the next run's
     run = at(step);
+    require_answer(run);
     estimate = estimate_error(model, run.impact.velocity_after, previous,
                               companion_at(finer, step, rule.value));
     estimate.companion_seconds = seconds;
@@ -257,7 +295,7 @@ SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
     ++runs;
   }
   run.error_estimate = estimate;
-  run.accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value};
+  run.accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value, .ended = ended};
   return run;
 }
 
@@ -265,37 +303,52 @@ SceneRun SceneRuns::with_coarser_companions(StepOptions step, StepRule rule,
 // companion becomes the run where the estimate is within kChainReach of the accuracy (the
 // companion's own error about the estimate x its ratio of the step, 0.2), else a new pair starts
 // at the step the estimate predicts, with the order observed from the run before. Companions sample
-// no record: an answer that was one runs again to sample it (beyond kMostRuns).
+// no record: an answer that was one runs again to sample it (beyond kMostRuns). Where a finer run
+// spends its budget of steps, the answer is the last one with an estimate, not met.
 constexpr double kChainReach = 6.0;
 
 SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, double accuracy) const {
-  std::optional<SceneRun> run;  // the answer's, at `step`, once made
-  bool recorded = record;
-  double others = 0.0;  // s, of the runs that are not the answer
+  std::optional<SceneRun> run;        // the answer's, at `step`, once made
+  StepOptions answer_options = step;  // as the answer ran (a companion's: with its budget)
+  double seconds = 0.0;               // of every run made
   int runs = 0;
   ErrorEstimate estimate;
   std::optional<std::pair<double, double>> pair_before;  // its step and estimate
+  std::optional<HeldAnswer> held;  // the answer before, while a finer run goes on
+  std::string ended;
   while (true) {
     const Companion companion = companion_of(rule, step);
     SceneRun finer;
-    if (run) {
-      finer = at(companion.options, false);
-      ++runs;
-    } else {
-      std::tie(run, finer) = with_companion(step, record, companion);
-      recorded = record;
-      runs += 2;
+    try {
+      if (run) {
+        ++runs;
+        finer = at(companion.options, false);
+      } else {
+        runs += 2;
+        std::tie(run, finer) = with_companion(step, record, companion);
+        answer_options = step;
+        require_answer(*run);
+        seconds += run->impact.wall_time;
+      }
+      require_answer(finer);
+    } catch (const BudgetSpent& spent) {
+      if (!held) throw;  // the first pair's: no answer
+      ended = "a run finer than " + rule.name + " " + to_text(held->value) +
+              " spent its budget of steps: " + spent.what();
+      run = std::move(held->run);
+      answer_options = held->options;
+      estimate = held->estimate;
+      rule.value = held->value;
+      break;
     }
+    seconds += finer.impact.wall_time;
     estimate =
         estimate_error(model, run->impact.velocity_after, finer.impact.velocity_after, companion);
     const double finer_value = rule.value * rule.companion;  // the companion's, in range
     const bool chain = finer_value >= rule.finest && estimate.worst <= kChainReach * accuracy;
-    if (estimate.worst <= accuracy || !std::isfinite(estimate.worst) || rule.value <= rule.finest ||
-        runs + (chain ? 1 : 2) > kMostRuns) {
-      others += finer.impact.wall_time;
+    if (estimate.worst <= accuracy ||
+        !(ended = why_ended(estimate.worst, rule, runs + (chain ? 1 : 2) <= kMostRuns)).empty())
       break;
-    }
-    others += run->impact.wall_time;
     const double order = pair_before ? observed_order(pair_before->first, pair_before->second,
                                                       rule.value, estimate.worst)
                                      : 1.0;
@@ -303,25 +356,25 @@ SceneRun SceneRuns::with_finer_companions(StepOptions step, StepRule rule, doubl
         chain ? finer_value
               : next_step(rule, estimate.worst, accuracy, run->impact.result.steps, order);
     pair_before = {rule.value, estimate.worst};
+    held = HeldAnswer(std::move(*run), answer_options, estimate, rule.value);
     step = rule.at(step, next);
     rule.value = next;
     if (chain) {
       run = std::move(finer);
-      recorded = false;
+      answer_options = companion.options;
     } else {
-      others += finer.impact.wall_time;
       run.reset();
     }
   }
-  if (!recorded && record) {
-    others += run->impact.wall_time;
+  if (!run->recorded && record) {
     run.reset();
-    run = at(step);
+    run = at(answer_options);
+    seconds += run->impact.wall_time;
     ++runs;
   }
-  estimate.companion_seconds = others;
+  estimate.companion_seconds = seconds - run->impact.wall_time;
   run->error_estimate = estimate;
-  run->accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value};
+  run->accuracy = AccuracyRun{.runs = runs, .step = rule.name, .value = rule.value, .ended = ended};
   return std::move(*run);
 }
 
@@ -431,10 +484,10 @@ std::string describe_error(const SceneRun& run) {
                 estimate.worst, estimate.rms, estimate.method.c_str(), estimate.companion_seconds);
   std::string line = lines + text;
   if (run.accuracy) {
-    std::snprintf(text, sizeof text, "accuracy %.3g %s in %d runs, %s %.3g\n", run.accuracy->asked,
-                  run.accuracy->met ? "met" : "NOT met (the step's range or six runs ended first)",
-                  run.accuracy->runs, run.accuracy->step.c_str(), run.accuracy->value);
-    line += text;
+    std::snprintf(text, sizeof text, "accuracy %.3g %s in %d runs, %s %.3g", run.accuracy->asked,
+                  run.accuracy->met ? "met" : "NOT met", run.accuracy->runs,
+                  run.accuracy->step.c_str(), run.accuracy->value);
+    line += text + (run.accuracy->met ? "" : ": " + run.accuracy->ended) + "\n";
   }
   return line;
 }

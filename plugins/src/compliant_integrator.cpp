@@ -240,14 +240,16 @@ void CompliantIntegrator::take_step() {
     const bool plastic =
         std::any_of(laws_.begin(), laws_.end(),
                     [](const numerics::ContactLaw& law) { return law.restitution < 0.01; });
-    throw Error("compliant integrator: max_steps = " + std::to_string(options_.max_steps) +
-                " time steps taken by t = " + to_text(t) + " s (compliant.max_steps in a scene); " +
-                (plastic ? "with restitution below 0.01 the beads stay touching at nearly zero "
-                           "force and collide again and again (the LZB method treats e -> 0 "
-                           "exactly)"
-                         : "the contacts' time scale is below what the tolerance and double "
-                           "precision resolve (check the speeds and stiffnesses, or loosen the "
-                           "tolerance)"));
+    throw BudgetSpent(
+        "compliant integrator: max_steps = " + std::to_string(options_.max_steps) +
+            " time steps taken by t = " + to_text(t) + " s (compliant.max_steps in a scene); " +
+            (plastic ? "with restitution below 0.01 the beads stay touching at nearly zero "
+                       "force and collide again and again (the LZB method treats e -> 0 exactly)"
+                     : "a long run needs a larger compliant.max_steps or a looser tolerance; "
+                       "where the steps are tiny, the contacts' time scale is below what the "
+                       "tolerance and double precision resolve (check the speeds and "
+                       "stiffnesses)"),
+        t);
   }
   const numerics::DenseOutput::State& now = s.dense->state();
   if (!std::all_of(now.begin(), now.end(), [](double x) { return std::isfinite(x); }))

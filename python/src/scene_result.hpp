@@ -58,8 +58,9 @@ void bind_scene_result(pybind11::class_<Result>& result) {
           "the worst body), 'method' and 'companion_seconds'")
       .def_property_readonly(
           "accuracy", [](const Result& self) { return self.summary.attr("get")("accuracy"); },
-          "None, or when asked for an accuracy: dict of 'asked', 'met', 'runs' and the step "
-          "chosen ('tolerance' or 'delta_p')");
+          "None, or when asked for an accuracy: dict of 'asked', 'met', 'runs', the step "
+          "chosen ('tolerance' or 'delta_p') and 'ended' (None where met, else what ended the "
+          "runs first)");
 }
 
 }  // namespace mimpact::python

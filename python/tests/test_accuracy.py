@@ -45,6 +45,26 @@ def test_an_lzb_run_meets_the_accuracy_asked_for(c1, how):
         if step == "tolerance" else result.delta_p == result.accuracy["delta_p"]
 
 
+def test_a_budget_spent_ends_the_runs_not_met_and_says_why(c1, cli, tmp_path):
+    # C1 at e = 0.5 meets 1e-10 at a tolerance of about 2e-12 (21 632 steps); with 15 000 steps
+    # allowed, the answer is the first pair's run at 1e-10, its estimate above the accuracy
+    c1.update(method="compliant", compliant={"max_steps": 15000}, accuracy=1e-10)
+    c1["contact"]["restitution"] = 0.5
+    del c1["impact"]
+    result = mimpact.run_chain(c1)
+    assert not result.accuracy["met"] and result.error_estimate["worst"] > 1e-10
+    assert "spent its budget of steps" in result.accuracy["ended"]
+    assert "max_steps = 15000" in result.accuracy["ended"]
+    alone = mimpact.run_chain(dict(c1, accuracy=None, compliant={"max_steps": 15000,
+                                                                 "tolerance": 1e-10}))
+    assert np.array_equal(result.post_impact_velocities, alone.post_impact_velocities)
+    done, summary = run_cli(cli, "chain", c1, tmp_path)
+    assert summary["accuracy"] == result.accuracy
+    loud = subprocess.run([cli, "chain", str(tmp_path / "scene.json")], capture_output=True,
+                          text=True, timeout=60)
+    assert "accuracy 1e-10 NOT met in 4 runs, tolerance 1e-10: a run finer" in loud.stderr
+
+
 def test_a_packing_meets_the_accuracy_in_the_moving_geometry(cli, tmp_path):
     scene = square_on_a_wall([0.0, 1.0])
     scene.update(method="compliant", accuracy=1e-4, compliant={"end_time": 2e-4})

@@ -79,9 +79,12 @@ ErrorEstimate estimate_error(const ContactModel& model, const Eigen::VectorXd& v
 struct AccuracyRun {
   double asked = 0.0;
   bool met = false;    // the estimate's worst body is within it
-  int runs = 0;        // of the scene, the answer's and its companions'
+  int runs = 0;        // of the scene begun, the answer's and its companions'
   std::string step;    // the step rule's field: "delta_p" (N s) or "tolerance"
   double value = 0.0;  // the answer's
+  // where not met: what ended the runs first (the step's range, the most runs, or a finer run's
+  // budget of steps, with its message)
+  std::string ended;
 };
 
 // The step options of a first run asked for `accuracy` (docs/design/error_estimates.md,
