@@ -117,7 +117,11 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
   history_.work_of_forces = 0.0;
   for (Index j = 0; j < m; ++j) {
     Contact& c = s.contact(j);
+    // a gap within the round-off of the positions it is computed from is a touch: a chain
+    // placed end to end starts touching at every contact, however far from the origin
+    // (docs/design/compliant_contacts.md)
     c.anchor_gap = system.gap(j, s.anchor_q);
+    if (std::abs(c.anchor_gap) <= gap_round_off(system, s.anchor_q, j)) c.anchor_gap = 0.0;
     c.has_closed = c.anchor_gap <= s.leave_overlap;  // touching at the start
     if (s.linear)
       system.for_each_jacobian_entry(j, s.anchor_q, [&](Index coordinate, double value) {
@@ -126,11 +130,9 @@ void CompliantIntegrator::initialize(kernel::NonSmoothDynamicalSystem& system, d
                                s.local_of_coordinate[std::size_t(coordinate)], value});
       });
   }
-  // a contact that starts compressed (a static load) starts on its loading curve; an overlap
-  // within the round-off of the positions its gap is computed from is a touch, else a long chain
-  // placed end to end starts loaded at fine tolerances (docs/design/compliant_contacts.md)
+  // a contact that starts compressed (a static load) starts on its loading curve
   for (Index j = 0; j < m; ++j)
-    if (-s.contact(j).anchor_gap > std::max(s.join_overlap, gap_round_off(system, s.anchor_q, j))) {
+    if (-s.contact(j).anchor_gap > s.join_overlap) {
       join(j);
       max_compression_[std::size_t(j)] = -s.contact(j).anchor_gap;
       history_.force(j) = history_.max_force(j) =
