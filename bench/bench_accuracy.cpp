@@ -124,6 +124,7 @@ Hindsight hindsight(const CorpusScene& entry, const granular::AccuracyRun& chose
               least_seconds([&] { run = single.run({.record = false, .estimate_error = true}); }),
               step};
     } catch (const InvalidInput&) {  // beyond the step's range, or its max_steps
+    } catch (const BudgetSpent&) {   // a step past the budget of its scene's run
     }
   }
   return {};
@@ -150,7 +151,7 @@ void accuracy_cost(benchmark::State& state, const CorpusScene* entry, double acc
   try {
     exact = testing::run_corpus_scene(reference, entry->name, {.record = false})
                 .run.impact.velocity_after;
-  } catch (const InvalidInput& beyond) {  // the run took the finest step there is
+  } catch (const Error& beyond) {  // the run took the finest step there is, or its budget
     state.SkipWithError((std::string("no reference 10 000 times finer: ") + beyond.what()).c_str());
     return;
   }
