@@ -158,7 +158,7 @@ TEST(WaveCost, ALooserToleranceNeverCostsMore) {
 }
 
 // Behind the wave, too: the beads' positions, sums of radii, carry round-off that jumps where
-// they cross a power of two (2, 4, 8, 16, 32 m: beads 100, 200, 400, 800, 1 600), and gaps of
+// they cross some powers of two (2, 4, 16, 32 m: beads 100, 200, 800, 1 600), and gaps of
 // that round-off (1e-14 m) are more than the joining overlap at the finest tolerances. Taken as
 // gaps, they left the wake colliding at 1e-11 of V, above the speed of an instantaneous
 // collision, in groups that stayed in motion ever after: 123 bodies in motion at 0.05 s at
